@@ -1,0 +1,31 @@
+/* sa_module.h - what a physics module hands the CLI.
+ *
+ * A scene is selected by the presence of its module's trigger section in the case file;
+ * a module whose sections are absent is never initialised (no LIGGGHTS, no MPI, no mesh
+ * I/O in a scene that does not need them). Lifecycle driven by apps/softact.c:
+ *   check(case, &scene)     parse + validate every key of the module (cross-key checks too),
+ *                           touching no output; SA_ERR_INPUT names file:line and key
+ *   write_resolved(scene,f) every key with its resolved value (defaults filled in)
+ *   run(scene, run)         compute, writing into run->out_dir
+ *   destroy(&scene)         free; accepts NULL */
+#ifndef SA_MODULE_H
+#define SA_MODULE_H
+
+#include <stdio.h>
+
+#include "sa_params.h"
+#include "sa_run.h"
+
+typedef struct {
+  const char *name;                  /* "hmsa", "fem" */
+  const char *trigger;               /* section that selects this module's scene */
+  const char *help;                  /* one line for --help */
+  const SaParamTable *const *tables; /* every section the module owns */
+  int ntables;
+  int (*check)(const SaCase *c, void **scene);
+  void (*write_resolved)(const void *scene, FILE *f);
+  int (*run)(void *scene, SaRun *run);
+  void (*destroy)(void **scene);
+} SaModule;
+
+#endif

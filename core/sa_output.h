@@ -1,0 +1,43 @@
+/* sa_output.h - results folder, atomic files and clean interruption.
+ *
+ * Atomic files: sa_file_open writes to a hidden temporary name beside the target
+ * (".NAME.tmp.PID"); sa_file_commit flushes, checks for write errors and renames it onto the
+ * target, so a reader never sees a truncated result. Open temporaries are registered: a
+ * failed run (sa_file_abort_all, called by main) or a second signal removes them.
+ *
+ * Signals: sa_signals_install() makes SIGINT/SIGTERM set a flag; long loops poll
+ * sa_interrupted(), commit what they computed, and return SA_ERR_INTERRUPTED. A second
+ * signal removes open temporaries and exits at once with status 3. */
+#ifndef SA_OUTPUT_H
+#define SA_OUTPUT_H
+
+#include <stdio.h>
+
+typedef struct SaFile SaFile;
+
+int sa_file_open(const char *path, SaFile **out); /* binary-safe "wb" stream */
+FILE *sa_file_stream(SaFile *f);                  /* [borrowed] */
+const char *sa_file_target(const SaFile *f);
+int sa_file_commit(SaFile **f);                   /* flush, close, rename; *f = NULL */
+void sa_file_abort(SaFile **f);                   /* close, remove temporary; *f = NULL */
+void sa_file_abort_all(void);                     /* remove every open temporary */
+
+void sa_signals_install(void);
+int sa_interrupted(void);                         /* non-zero once SIGINT/SIGTERM arrived */
+int sa_interrupt_signal(void);                    /* which signal (0 if none) */
+
+/* mkdir -p. */
+int sa_mkdir_p(const char *path);
+/* Join dir and name into buf (size SA_STR_MAX); error if it does not fit. */
+int sa_path_join(const char *dir, const char *name, char *buf);
+
+/* Progress on stderr: one updating bar with ETA on a TTY, a plain line every ~10 % (and at
+ * most every 5 s) otherwise, nothing when the log level is below INFO (--quiet).
+ * sa_progress_update is thread-safe. */
+typedef struct SaProgress SaProgress;
+int sa_progress_start(const char *label, long total, SaProgress **out);
+void sa_progress_update(SaProgress *p, long done);
+void sa_progress_add(SaProgress *p, long increment);
+void sa_progress_finish(SaProgress **p);
+
+#endif

@@ -1,0 +1,48 @@
+/* fem_material.h - constitutive laws behind one interface.
+ *
+ * A law maps the deformation gradient F (row-major 3x3) at a quadrature point, with optional
+ * history variables, to the first Piola-Kirchhoff stress P (3x3) and the tangent
+ * A_iJkL = dP_iJ / dF_kL (81 entries, index [(3i+J)*9 + 3k+L]). A is general (not assumed
+ * symmetric), so a non-associated plasticity law (Mohr-Coulomb, coming later) fits, and the
+ * assembly then hands UMFPACK an unsymmetric tangent.
+ *
+ * Hyperelastic laws are split into an isochoric part W_iso(C_bar) (C_bar = J^-2/3 C) and a
+ * volumetric part U(J) = (kappa/2)(J - 1)^2 ... (the form is fixed per law, see fem_material.c).
+ * fem_material_eval_iso returns P and A of W_iso only; the element adds the volumetric part
+ * through the mixed (mean-dilatation) formulation, which avoids volumetric locking.
+ *
+ * Laws: NEOHOOKE (C10 = mu/2), MOONEY_RIVLIN (C10, C01), YEOH (C10, C20, C30) for silicone;
+ * stiff parts (reinforcement, strain-limiting layer): LINEAR_ELASTIC_LARGE = compressible
+ * neo-Hookean with mu, kappa from E, nu (small-strain limit equals Hooke's law). */
+#ifndef FEM_MATERIAL_H
+#define FEM_MATERIAL_H
+
+typedef enum {
+  FEM_MAT_NEOHOOKE,
+  FEM_MAT_MOONEY_RIVLIN,
+  FEM_MAT_YEOH,
+  FEM_MAT_STIFF_NEOHOOKE /* from E, nu */
+} FemMaterialKind;
+
+typedef struct {
+  FemMaterialKind kind;
+  double c10, c01, c20, c30; /* [Pa] */
+  double kappa;              /* bulk modulus [Pa] */
+  double rho;                /* density [kg/m^3] */
+  int nhist;                 /* history variables per quadrature point (0 for hyperelastic) */
+} FemMaterial;
+
+/* Initial shear modulus mu0 = 2 (C10 + C01). */
+double fem_material_mu0(const FemMaterial *m);
+/* Build a stiff law from Young's modulus and Poisson's ratio. */
+FemMaterial fem_material_from_e_nu(double E, double nu, double rho);
+
+/* Isochoric part: energy W_iso [out], P [out] 9, A [out] 81 (A may be NULL). hist_old [in] and
+ * hist_new [out] have m->nhist entries (may be NULL when nhist == 0). Returns SA_ERR_INVERTED
+ * when det F <= 0. */
+int fem_material_eval_iso(const FemMaterial *m, const double F[9], const double *hist_old,
+                          double *hist_new, double *W, double P[9], double A[81]);
+/* Volumetric part U(J), U'(J), U''(J). */
+void fem_material_eval_vol(const FemMaterial *m, double J, double *U, double *dU, double *d2U);
+
+#endif

@@ -1,0 +1,71 @@
+/* fem_mesh.h - tetrahedral meshes with named regions, surfaces and node sets, generated and read
+ * through the Gmsh C API (gmshc.h) from the .geo sources in meshes/.
+ *
+ * Conventions
+ *  - Coordinates in metres. Element node order is VTK's: tet4 corners 0..3 (positive volume);
+ *    tet10 corners 0..3 then edge mid-nodes on edges 01, 12, 02, 03, 13, 23.
+ *  - Regions: 3-D physical groups (e.g. "silicone", "reinforcement", "strain_limit").
+ *  - Surfaces: 2-D physical groups (e.g. "cavity_wall", "fixed_end", "tip"), stored as boundary
+ *    faces of the volume mesh: tri3 (tet4) or tri6 (tet10; corners 0..2 then mid-nodes of edges
+ *    01, 12, 20), oriented so that the right-hand normal points OUT of the solid, with the index
+ *    of the element the face belongs to. Each surface also defines a node set (its nodes).
+ *  - Every array is owned by the FemMesh; fem_mesh_destroy frees all. */
+#ifndef FEM_MESH_H
+#define FEM_MESH_H
+
+#include "sa_params.h"
+
+typedef enum { FEM_TET4 = 4, FEM_TET10 = 10 } FemElemType;
+
+typedef struct {
+  char name[64];
+  int nfaces;
+  int nfn;        /* nodes per face: 3 or 6 */
+  int *faces;     /* nfn * nfaces node indices, outward normal (out of the solid) */
+  int *face_elem; /* element owning each face */
+  int nnodes;     /* node set of the surface (sorted, unique) */
+  int *nodes;
+} FemSurface;
+
+typedef struct {
+  int nnodes;
+  double *xyz;      /* 3 * nnodes reference coordinates [m] */
+  FemElemType etype;
+  int nen;          /* nodes per element: 4 or 10 */
+  int nelem;
+  int *conn;        /* nen * nelem */
+  int *region;      /* nelem region indices into region_names */
+  int nregions;
+  char (*region_names)[64];
+  int nsurfaces;
+  FemSurface *surfaces;
+} FemMesh;
+
+/* Numbers handed to the .geo file before it is parsed (e.g. {"R_in", 6e-3}). The .geo files
+ * give every parameter a default (`If(!Exists(R_in)) R_in = 6e-3; EndIf`). */
+typedef struct {
+  const char *name;
+  double value;
+} FemGeoParam;
+
+/* Generate a mesh from geo_path [in] with parameters, target element size h [m] (the .geo may
+ * refine locally relative to it) and order 1 (tet4) or 2 (tet10). Errors: missing file, Gmsh
+ * failure, missing physical groups -> SA_ERR_INPUT naming the file. */
+int fem_mesh_generate(const char *geo_path, int nparams, const FemGeoParam *params, double h,
+                      int order, FemMesh **out);
+/* Read a Gmsh .msh file (any version Gmsh reads). */
+int fem_mesh_read(const char *msh_path, FemMesh **out);
+/* Check element quality: SA_ERR_INPUT naming the first inverted or degenerate element (volume
+ * <= rel_tol * mean volume, or tet10 with det J <= 0 at a quadrature point). */
+int fem_mesh_check(const FemMesh *m, double rel_tol);
+/* Lookups: index or -1. */
+int fem_mesh_find_region(const FemMesh *m, const char *name);
+const FemSurface *fem_mesh_find_surface(const FemMesh *m, const char *name);
+/* Require named groups: SA_ERR_INPUT naming the missing one and the groups present. */
+int fem_mesh_require(const FemMesh *m, int nregions, const char *const *regions, int nsurfaces,
+                     const char *const *surfaces);
+/* Total reference volume of a region (-1 = all). */
+double fem_mesh_volume(const FemMesh *m, int region);
+void fem_mesh_destroy(FemMesh **m);
+
+#endif
