@@ -136,6 +136,15 @@ static int run_case(const Args *a) {
   memset(&run, 0, sizeof run);
   int rc = sa_case_load(a->case_path, &c);
   for (int i = 0; !rc && i < a->nsets; i++) rc = sa_case_override(c, a->sets[i]);
+  if (!rc) { /* unknown sections/keys first, against every module, so a typo in the scene
+                section is reported as a typo rather than as a missing scene */
+    const SaParamTable *all[128];
+    int na = 0;
+    all[na++] = &sa_run_table;
+    for (int i = 0; modules[i]; i++)
+      for (int t = 0; t < modules[i]->ntables && na < 128; t++) all[na++] = modules[i]->tables[t];
+    rc = sa_case_check_known(c, all, na);
+  }
   if (!rc) rc = select_module(c, &m);
   if (!rc) {
     const SaParamTable *tables[64];

@@ -15,7 +15,8 @@
 struct SaFile {
   FILE *fp;
   char target[SA_STR_MAX];
-  char temp[SA_STR_MAX + 32];
+  char temp[SA_STR_MAX + 48];
+  int dead; /* closed and removed by sa_file_abort_all; the owner still frees it */
   struct SaFile *next;
 };
 
@@ -48,7 +49,12 @@ int sa_file_open(const char *path, SaFile **out) {
   memcpy(f->target, path, n + 1);
   const char *slash = strrchr(path, '/');
   int dirlen = slash ? (int)(slash - path + 1) : 0;
-  snprintf(f->temp, sizeof f->temp, "%.*s.%s.tmp.%ld", dirlen, path, path + dirlen, (long)getpid());
+  /* pid + counter: unique across processes and across writers within this process */
+  static long counter;
+  pthread_mutex_lock(&sa_files_lock);
+  long k = ++counter;
+  pthread_mutex_unlock(&sa_files_lock);
+  snprintf(f->temp, sizeof f->temp, "%.*s.%s.tmp.%ld.%ld", dirlen, path, path + dirlen, (long)getpid(), k);
   f->fp = fopen(f->temp, "wb");
   if (!f->fp) {
     int e = errno;
@@ -70,6 +76,11 @@ int sa_file_commit(SaFile **fp) {
   SaFile *f = *fp;
   if (!f) return 0;
   *fp = NULL;
+  if (f->dead) {
+    int rc = SA_ERROR(SA_ERR_IO, "%s was abandoned before it was complete", f->target);
+    free(f);
+    return rc;
+  }
   int bad = fflush(f->fp) != 0 || ferror(f->fp);
   int e = errno;
   bad |= fclose(f->fp) != 0;
@@ -95,20 +106,28 @@ void sa_file_abort(SaFile **fp) {
   SaFile *f = *fp;
   if (!f) return;
   *fp = NULL;
+  if (f->dead) {
+    free(f);
+    return;
+  }
   fclose(f->fp);
   unlink(f->temp);
   sa_file_unregister(f);
   free(f);
 }
 
+/* Close and remove every open temporary. The handles stay allocated (marked dead) because
+ * writer objects still own them; their later abort/commit frees them. */
 void sa_file_abort_all(void) {
-  for (;;) {
-    pthread_mutex_lock(&sa_files_lock);
-    SaFile *f = sa_open_files;
-    pthread_mutex_unlock(&sa_files_lock);
-    if (!f) break;
-    sa_file_abort(&f);
+  pthread_mutex_lock(&sa_files_lock);
+  for (SaFile *f = sa_open_files; f; f = f->next) {
+    fclose(f->fp);
+    f->fp = NULL;
+    unlink(f->temp);
+    f->dead = 1;
   }
+  sa_open_files = NULL;
+  pthread_mutex_unlock(&sa_files_lock);
 }
 
 static void sa_on_signal(int sig) {

@@ -9,14 +9,19 @@
  * Paths and texts appear in the script only inside single-quoted gnuplot strings (a quote is
  * doubled; newlines are refused), where gnuplot expands neither backquotes nor @macros, and
  * gnuplot is started with fork/execv (no shell), so no name can inject a command.
+ * A style (SaPlotSeries.style) is gnuplot syntax and goes in unquoted, so ';', '`', '#' and
+ * line breaks are refused in it.
+ *
  * Data paths (SaPlotSeries.csv) are taken as the calling process would open them: a file in
- * the PNG's folder is written by its bare name (the script stays relocatable), another
- * existing file by its absolute path; a name that does not exist from here is left as given,
- * i.e. relative to the PNG's folder. sa_plot_script bodies run in the PNG's folder too.
+ * or below the PNG's folder is written relative to that folder (the script stays relocatable
+ * with its data), another existing file by its absolute path; a name that does not exist
+ * from here is left as given, i.e. relative to the PNG's folder. sa_plot_script bodies also
+ * run in the PNG's folder, after "set datafile separator ','" and commentschars '#' (our CSV).
  *
  * The terminal is pngcairo when `gnuplot -e "set terminal"` lists it, else png; the probe runs
  * once per process. Any failure (no gnuplot, error in the script, timeout) is logged as a
  * warning and returns SA_ERR_IO; the .gp is kept for inspection. */
+#define _XOPEN_SOURCE 700 /* realpath */
 #include "sa_plot.h"
 
 #include <errno.h>
@@ -214,13 +219,14 @@ static int sa_plot_split(const char *png, char *dir, char *base) {
 /* How the script (run in png_dir) should name data file csv; see the file comment. */
 static void sa_plot_data_path(const char *csv, const char *png_dir, char *out, size_t size) {
   snprintf(out, size, "%s", csv);
-  if (csv[0] == '/' || access(csv, F_OK) != 0) return;
+  if (access(csv, F_OK) != 0) return;
   char *abs = realpath(csv, NULL), *dir = realpath(png_dir, NULL);
   if (abs) {
-    const char *slash = strrchr(abs, '/');
-    size_t dlen = (size_t)(slash - abs);
-    if (dir && strlen(dir) == (dlen ? dlen : 1) && !strncmp(dir, abs, dlen ? dlen : 1))
-      snprintf(out, size, "%s", slash + 1);
+    size_t dlen = dir ? strlen(dir) : 0;
+    if (dir && dlen > 1 && !strncmp(abs, dir, dlen) && abs[dlen] == '/')
+      snprintf(out, size, "%s", abs + dlen + 1);
+    else if (dir && dlen == 1) /* PNG in the root folder */
+      snprintf(out, size, "%s", abs + 1);
     else
       snprintf(out, size, "%s", abs);
   }
@@ -233,10 +239,10 @@ static int sa_plot_render(const char *png, int width, int height, const char *bo
   char dir[SA_STR_MAX], base[SA_STR_MAX], script[SA_STR_MAX + 8], gp_base[SA_STR_MAX + 8];
   SA_CHECK(sa_plot_split(png, dir, base));
   size_t blen = strlen(base);
-  int cut = blen > 4 && !strcmp(base + blen - 4, ".png") ? 4 : 0;
+  size_t cut = blen > 4 && !strcmp(base + blen - 4, ".png") ? 4 : 0;
   snprintf(gp_base, sizeof gp_base, "%s%.*s.gp", base[0] == '-' ? "./" : "", (int)(blen - cut),
            base);
-  snprintf(script, sizeof script, "%.*s.gp", (int)(strlen(png) - (size_t)cut), png);
+  snprintf(script, sizeof script, "%.*s.gp", (int)(strlen(png) - cut), png);
   SA_REQUIRE(width >= 0 && height >= 0, SA_ERR_INPUT, "plot %s: negative size %d x %d", png,
              width, height);
   if (!width) width = 900;
@@ -291,7 +297,6 @@ static int sa_plot_render(const char *png, int width, int height, const char *bo
   SaPlotRun *r = malloc(sizeof *r);
   if (!r) return SA_ERROR(SA_ERR_MEMORY, "cannot allocate the gnuplot output buffer");
   char *argv[] = {"gnuplot", "-e", set_out, gp_base, NULL};
-  double t0 = sa_time_now();
   int ran = sa_plot_exec(exe, dir, argv, SA_PLOT_TIMEOUT, r);
   struct stat st;
   int made = stat(tmp_path, &st) == 0 && st.st_size > 0;
@@ -312,7 +317,6 @@ static int sa_plot_render(const char *png, int width, int height, const char *bo
     remove(tmp_path);
     return sa_plot_fail(png, "rename: %s", strerror(e));
   }
-  sa_timing_add("plot", sa_time_now() - t0);
   return 0;
 }
 

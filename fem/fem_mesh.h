@@ -9,6 +9,8 @@
  *    faces of the volume mesh: tri3 (tet4) or tri6 (tet10; corners 0..2 then mid-nodes of edges
  *    01, 12, 20), oriented so that the right-hand normal points OUT of the solid, with the index
  *    of the element the face belongs to. Each surface also defines a node set (its nodes).
+ *    A 2-D group on an interface between two elements is stored with the lower-numbered
+ *    element's orientation.
  *  - Every array is owned by the FemMesh; fem_mesh_destroy frees all. */
 #ifndef FEM_MESH_H
 #define FEM_MESH_H
@@ -39,6 +41,7 @@ typedef struct {
   char (*region_names)[64];
   int nsurfaces;
   FemSurface *surfaces;
+  char source[256]; /* file the mesh came from, for messages ("" when built by hand) */
 } FemMesh;
 
 /* Numbers handed to the .geo file before it is parsed (e.g. {"R_in", 6e-3}). The .geo files

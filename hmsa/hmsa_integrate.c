@@ -254,7 +254,7 @@ static double reference_period(const HmsaModel *m) {
   double P = hmsa_model_period(m);
   if (P > 0) return P;
   HmsaEquilibrium eq;
-  if (hmsa_linearise(m, 1.0, 0.0, &eq) == 0 && eq.omega_u > 0) return 2.0 * M_PI / eq.omega_u;
+  if (hmsa_linearise(m, 1.0, 0.0, &eq) == 0 && eq.omega_u > 0) return 2.0 * HMSA_PI / eq.omega_u;
   sa_error_clear();
   return 1.0;
 }

@@ -54,7 +54,7 @@ double hmsa_model_b2_mean(const HmsaModel *m) {
 
 double hmsa_model_period(const HmsaModel *m) {
   if (m->loading == HMSA_LOAD_CONST || m->omega <= 0) return 0.0;
-  return 2.0 * M_PI / m->omega;
+  return 2.0 * HMSA_PI / m->omega;
 }
 
 void hmsa_model_rest(const HmsaModel *m, double *y) {
@@ -253,7 +253,7 @@ static int bracket_roots(const HmsaModel *m, double b2, ScalarFn fn, double *roo
     if (m->model == HMSA_ZENER) {
       x = lo * pow(hi / lo, s);
     } else {
-      double u = 0.5 * (1.0 - cos(M_PI * s)); /* clusters at both ends */
+      double u = 0.5 * (1.0 - cos(HMSA_PI * s)); /* clusters at both ends */
       x = lo + (hi - lo) * u;
     }
     double f;

@@ -17,6 +17,7 @@ typedef enum { HMSA_ZENER = 0, HMSA_PC = 1 } HmsaModelKind;
 typedef enum { HMSA_LOAD_CONST = 0, HMSA_LOAD_SQ = 1, HMSA_LOAD_LIN = 2 } HmsaLoading;
 
 #define HMSA_NEQ_MAX 3
+#define HMSA_PI 3.14159265358979323846
 
 typedef struct {
   HmsaModelKind model;

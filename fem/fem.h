@@ -1,0 +1,158 @@
+/* fem.h - public interface of the fem module: the nonlinear solid solver and the module glue.
+ *
+ * FemSolver: total-Lagrangian finite elements (tet4/tet10, mean-dilatation mixed element from
+ * fem_element.h) with Newton-Raphson, consistent tangent, backtracking line search and adaptive
+ * load stepping. Linear systems: CHOLMOD supernodal Cholesky (METIS ordering, symbolic analysis
+ * once in setup) with a stated UMFPACK LU fallback when the tangent is not positive definite or
+ * not symmetric. Formulation and definitions: docs/fem.md.
+ *
+ * Lifecycle (handle first, outputs last; destroy accepts NULL):
+ *   fem_solver_create(mesh, mats, params)       mesh [borrowed], mats [in] copied, one per region
+ *   fem_solver_fix_surface / fix_nodes / add_pressure_surface / set_gravity      (before setup)
+ *   fem_solver_setup                            ALL symbolic work and every allocation
+ *   loop: set_pressure | set_volume | set_nodal_forces | set_prescribed -> solve | step_dynamic
+ *         -> positions / velocities / pressure / cavity_volume
+ *   fem_solver_destroy(&s)
+ *
+ * Loads are TARGETS: solve() ramps every load from the last converged (committed) state to its
+ * target with adaptive substeps (load parameter 0 -> 1), so a coupling call that changes the
+ * wall forces a little costs one substep of a few Newton iterations, with no re-analysis and no
+ * allocation in solver code. On failure the solver is left at the last converged substep
+ * (fem_solver_report says how far it got). */
+#ifndef FEM_H
+#define FEM_H
+
+#include "fem_material.h"
+#include "fem_mesh.h"
+#include "sa_module.h"
+
+/* The module the CLI registers (trigger section [mesh]). */
+extern const SaModule fem_module;
+
+typedef struct FemSolver FemSolver;
+
+/* Component masks for boundary conditions. */
+enum { FEM_X = 1, FEM_Y = 2, FEM_Z = 4, FEM_XYZ = 7 };
+
+typedef enum {
+  FEM_CONTROL_LOAD = 0,  /* pressure (and every other load) prescribed */
+  FEM_CONTROL_VOLUME = 1 /* cavity volume prescribed, pressure unknown (bordered system) */
+} FemControl;
+
+typedef enum { FEM_LINSOLVER_AUTO = 0, FEM_LINSOLVER_LU = 1 } FemLinSolverChoice;
+
+typedef struct {
+  double rtol;       /* residual norm relative to the internal-force norm (incl. reactions) */
+  double atol;       /* absolute residual norm [N] */
+  double vtol;       /* volume-constraint tolerance relative to the reference cavity volume */
+  int max_iter;      /* Newton iterations per substep before it counts as diverged */
+  int line_search;   /* backtracking on the residual norm (also on inverted elements) */
+  double dl_init;    /* first load-parameter increment (fraction of the ramp) */
+  double dl_min;     /* below this the ramp fails (limit point / step too small) */
+  double dl_max;     /* largest increment */
+  int easy_iter;     /* a substep converged in <= easy_iter iterations grows the next one */
+  double grow;       /* growth factor after an easy substep */
+  double cut;        /* cut factor after a failed substep */
+  int threads;       /* element-loop threads and BLAS threads (>= 1) */
+  FemLinSolverChoice linsolver; /* AUTO: CHOLMOD, UMFPACK when needed; LU: always UMFPACK */
+  double sym_tol;    /* tangent treated as symmetric when max|K-K^T|/max|K| <= sym_tol */
+  double hht_alpha;  /* implicit dynamics: HHT alpha in [-1/3, 0] (0 = trapezoidal Newmark) */
+  double mass_damping; /* Rayleigh mass-proportional damping coefficient [1/s] */
+} FemSolverParams;
+
+FemSolverParams fem_solver_params_default(void);
+
+/* Outcome of the last solve()/step_dynamic(). */
+typedef struct {
+  int substeps;      /* converged substeps */
+  int cuts;          /* failed substeps (retried with a smaller increment) */
+  int newton_iters;  /* total Newton iterations incl. failed substeps */
+  int lu_fallbacks;  /* factorisations done by UMFPACK instead of CHOLMOD */
+  double lambda;     /* ramp parameter reached (1 = targets reached) */
+  double last_dl;    /* last attempted increment */
+  char reason[512];  /* converged: why; failed: diagnosis */
+} FemSolveReport;
+
+/* Solver statistics (accumulated since setup). */
+typedef struct {
+  int nnodes, nelem, ndof, nfree;
+  long nnz_k;               /* entries of the (full) free-dof tangent */
+  double nnz_l;             /* entries of the Cholesky factor */
+  double t_assemble, t_factor, t_solve, t_symbolic; /* seconds */
+  int n_assemble, n_factor, n_solve;                /* calls (assembly incl. residual-only) */
+  int n_chol, n_lu;
+  int ncolors;              /* element colours of the parallel assembly */
+} FemSolverStats;
+
+/* mesh [borrowed, must outlive the solver]; mats [in] one per mesh region (copied). */
+int fem_solver_create(const FemMesh *mesh, const FemMaterial *mats, const FemSolverParams *prm,
+                      FemSolver **out);
+/* Fix the components in mask of every node of a surface / of nodes [in]. Before setup. */
+int fem_solver_fix_surface(FemSolver *s, const char *surface, int mask);
+int fem_solver_fix_nodes(FemSolver *s, int n, const int *nodes, int mask);
+/* Follower pressure acts on this surface (may be called for several surfaces); its faces also
+ * define the cavity volume. Before setup. */
+int fem_solver_add_pressure_surface(FemSolver *s, const char *surface);
+/* Gravity target g [in] 3 [m/s^2] (lumped-mass body force, ramped like the other loads). */
+int fem_solver_set_gravity(FemSolver *s, const double g[3]);
+/* Pattern, element colouring, CHOLMOD analysis, all work arrays. */
+int fem_solver_setup(FemSolver *s);
+
+/* Targets for the next solve. */
+int fem_solver_set_control(FemSolver *s, FemControl control);
+int fem_solver_set_pressure(FemSolver *s, double p);      /* [Pa], load control */
+int fem_solver_set_volume(FemSolver *s, double volume);   /* [m^3], volume control */
+/* Prescribed displacement of fixed component comp (0..2) of nodes [in]; the dof must have been
+ * fixed before setup. */
+int fem_solver_set_prescribed(FemSolver *s, int n, const int *nodes, int comp, double value);
+/* External nodal forces f [in] 3n [N] on nodes [in] (dead loads); other nodes keep theirs.
+ * No allocation: meant for the DEM coupling, called every coupling step. */
+int fem_solver_set_nodal_forces(FemSolver *s, int n, const int *nodes, const double *f);
+void fem_solver_clear_nodal_forces(FemSolver *s);
+
+/* Monitor called after every converged substep (static) / step (dynamic); a non-zero return
+ * stops the solve with that code. */
+typedef int (*FemMonitor)(FemSolver *s, void *ctx);
+void fem_solver_set_monitor(FemSolver *s, FemMonitor fn, void *ctx);
+
+/* Quasi-static ramp from the committed state to the targets. Returns 0 when the targets were
+ * reached; SA_ERR_LIMIT_POINT under load control when the increment fell below dl_min at a
+ * limit point (diagnosis in the error message and the report); SA_ERR_STEP_TOO_SMALL for any
+ * other repeated failure. The state is then the last converged substep. */
+int fem_solver_solve(FemSolver *s);
+/* Implicit dynamic step (HHT-alpha / Newmark, lumped mass) of length dt [s] to the targets
+ * (load control only); substeps itself when Newton fails. */
+int fem_solver_step_dynamic(FemSolver *s, double dt);
+void fem_solver_report(const FemSolver *s, FemSolveReport *rep);
+
+/* Read-back [borrowed; valid until the next solve]: 3 * nnodes each. */
+const double *fem_solver_positions(const FemSolver *s);
+const double *fem_solver_displacements(const FemSolver *s);
+const double *fem_solver_velocities(const FemSolver *s);
+double fem_solver_pressure(const FemSolver *s);
+/* Cavity volume enclosed by the pressure surfaces (and planes through the origin) [m^3]. */
+double fem_solver_cavity_volume(const FemSolver *s);
+double fem_solver_time(const FemSolver *s);
+/* Nodal forces the supports exert on the body at the converged state r [out] 3 * nnodes
+ * (zero on free dofs up to the residual tolerance). */
+int fem_solver_reactions(FemSolver *s, double *r);
+/* Total external force of the current pressure on the solid F [out] 3. */
+int fem_solver_pressure_resultant(FemSolver *s, double F[3]);
+/* Element-averaged Cauchy stress sigma [out] 9*nelem, von Mises vm [out] nelem, principal
+ * stretches lam [out] 3*nelem (any may be NULL). */
+int fem_solver_element_stress(FemSolver *s, double *sigma, double *vm, double *lam);
+void fem_solver_stats(const FemSolver *s, FemSolverStats *st);
+const FemMesh *fem_solver_mesh(const FemSolver *s);
+void fem_solver_destroy(FemSolver **s);
+
+/* Bending angle [deg] of a deformed surface: rotation in the x-z plane of the area-weighted
+ * mean outward normal of surface `tip`, measured from its reference direction, positive toward
+ * -x (docs/fem.md). x [in] current coordinates 3 * nnodes. */
+int fem_bending_angle(const FemMesh *m, const char *tip, const double *x, double *deg);
+/* Deformed centre-line: nslices slices of equal reference height between zmin and zmax; slice
+ * centroid = reference-volume-weighted mean of the deformed centroids of the elements whose
+ * reference centroid lies in the slice. z_ref [out] nslices, c [out] 3*nslices. */
+int fem_centerline(const FemMesh *m, const double *x, double zmin, double zmax, int nslices,
+                   double *z_ref, double *c);
+
+#endif

@@ -1,0 +1,1028 @@
+/* fem_solver.c - nonlinear total-Lagrangian solver: sparsity pattern with an element->slot
+ * scatter map, coloured parallel assembly, Newton-Raphson with lazy backtracking line search,
+ * adaptive load stepping, load or volume control (bordered system by two back-substitutions),
+ * implicit HHT-alpha dynamics, and the limit-point diagnosis. Formulation: docs/fem.md.
+ *
+ * Residual (free dofs):  R(u, p) = f_int(u) - f_dead - p q(u)
+ *   f_int  = dPi/du from the element kernels (mean-dilatation mixed element)
+ *   q(u)   = -int N n da over the pressure faces (follower load per unit pressure)
+ *   f_dead = nodal forces + lumped gravity
+ * Tangent: K = K_int + p K_q, K_q = -dq/du (fem_face_pressure's load stiffness at p = 1).
+ * Volume control adds c(u) = V(u) - V_target = 0 with p unknown:
+ *   K a = -R,  K b = q,  dp = -(c + g.a) / (g.b),  du = a + dp b,   g = dV/du. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fem.h"
+#include "fem_element.h"
+#include "fem_linsolve.h"
+#include "sa_error.h"
+#include "sa_log.h"
+
+#define MAXCOL_WORDS 4 /* up to 256 colours */
+
+struct FemSolver {
+  const FemMesh *m;
+  FemMaterial *mats;
+  FemSolverParams prm;
+  int N, ndof, nen, nqp;
+  int *fixmask;       /* N: components fixed */
+  int npf, nfn;       /* pressure faces */
+  int *pf;            /* nfn * npf node indices */
+  int setup_done;
+
+  /* pattern */
+  int nfree, *eq, *colptr, *rowind, *diag;
+  long nnz;
+  double *val;
+  int *adj_ptr, *adj, *slot9, *epair, *fpair;
+  int ncolors, *color_ptr, *color_elem;
+  FemLinSolver *lin;
+
+  /* history per quadrature point: committed and trial */
+  int *hoff;
+  double *hist_c, *hist_t;
+
+  /* state */
+  double *u, *x, *v, *acc;       /* current */
+  double *u_last, *v_last, *a_last, *u_prev; /* last converged substep, and the one before */
+  double p, p_last, p_prev, V, V_ref;
+  double dl_prev;                /* increment that led from u_prev to u_last */
+  double time;
+
+  /* loads: committed (ramp start) and target */
+  FemControl control;
+  double p_c, p_t, V_c, V_t, g_c[3], g_t[3];
+  double *fn_c, *fn_t, *up_c, *up_t, *mlump;
+
+  /* work */
+  double *fint, *q, *gv, *fdead, *res_n; /* ndof */
+  double *R, *da, *db, *du, *rhs, *qf, *gf; /* nfree */
+  double *u_it;                          /* last accepted Newton iterate (ndof) */
+  double p_it, V_goal, V_last, V_prev;
+  double path_last, path_prev, lam_total; /* predictor path coordinate */
+  int have_prev;
+  double dl_keep;                        /* increment carried over to the next ramp */
+  double slope0;                         /* first measured dp/dV (stiffness reference) */
+  int fail_not_pd;                       /* not positive definite seen since last convergence */
+  char last_fail[200];
+  double energy, min_detF;
+  int n_inverted;
+
+  FemMonitor mon;
+  void *mon_ctx;
+  FemSolveReport rep;
+  FemSolverStats st;
+  int last_sym;   /* symmetric path used at the last factorisation */
+  int saw_not_pd; /* a factorisation in the current substep was not positive definite */
+};
+
+FemSolverParams fem_solver_params_default(void) {
+  FemSolverParams p = {
+      .rtol = 1e-8, .atol = 1e-14, .vtol = 1e-10, .max_iter = 25, .line_search = 1,
+      .dl_init = 1.0, .dl_min = 1e-4, .dl_max = 1.0, .easy_iter = 5, .grow = 1.5, .cut = 0.5,
+      .threads = 2, .linsolver = FEM_LINSOLVER_AUTO, .sym_tol = 1e-9, .hht_alpha = -0.05,
+      .mass_damping = 0.0};
+  return p;
+}
+
+/* ------------------------------------------------------------------ create / BCs */
+
+int fem_solver_create(const FemMesh *mesh, const FemMaterial *mats, const FemSolverParams *prm,
+                      FemSolver **out) {
+  *out = NULL;
+  SA_REQUIRE(mesh && mesh->nnodes > 0 && mesh->nelem > 0, SA_ERR_INPUT, "empty mesh");
+  SA_REQUIRE(mats, SA_ERR_INPUT, "no materials");
+  FemSolver *s;
+  SA_CALLOC(s, 1);
+  s->m = mesh;
+  s->prm = prm ? *prm : fem_solver_params_default();
+  if (s->prm.threads < 1) s->prm.threads = 1;
+  s->N = mesh->nnodes;
+  s->ndof = 3 * mesh->nnodes;
+  s->nen = mesh->nen;
+  s->nqp = fem_element_nqp(mesh->etype);
+  int nreg = mesh->nregions > 0 ? mesh->nregions : 1;
+  s->mats = malloc((size_t)nreg * sizeof *s->mats);
+  s->fixmask = calloc((size_t)s->N, sizeof *s->fixmask);
+  if (!s->mats || !s->fixmask) {
+    fem_solver_destroy(&s);
+    return SA_ERROR(SA_ERR_MEMORY, "cannot allocate solver");
+  }
+  memcpy(s->mats, mats, (size_t)nreg * sizeof *s->mats);
+  s->nfn = mesh->etype == FEM_TET10 ? 6 : 3;
+  *out = s;
+  return 0;
+}
+
+int fem_solver_fix_nodes(FemSolver *s, int n, const int *nodes, int mask) {
+  SA_REQUIRE(!s->setup_done, SA_ERR_INPUT, "boundary conditions must be set before setup");
+  for (int k = 0; k < n; k++) {
+    SA_REQUIRE(nodes[k] >= 0 && nodes[k] < s->N, SA_ERR_INPUT, "node %d out of range", nodes[k]);
+    s->fixmask[nodes[k]] |= mask & FEM_XYZ;
+  }
+  return 0;
+}
+
+int fem_solver_fix_surface(FemSolver *s, const char *surface, int mask) {
+  const FemSurface *f = fem_mesh_find_surface(s->m, surface);
+  SA_REQUIRE(f, SA_ERR_INPUT, "mesh has no surface '%s'", surface);
+  SA_CHECK(fem_solver_fix_nodes(s, f->nnodes, f->nodes, mask));
+  return 0;
+}
+
+int fem_solver_add_pressure_surface(FemSolver *s, const char *surface) {
+  SA_REQUIRE(!s->setup_done, SA_ERR_INPUT, "pressure surfaces must be set before setup");
+  const FemSurface *f = fem_mesh_find_surface(s->m, surface);
+  SA_REQUIRE(f, SA_ERR_INPUT, "mesh has no surface '%s'", surface);
+  SA_REQUIRE(f->nfn == s->nfn, SA_ERR_INPUT, "surface '%s' has %d-node faces, expected %d",
+             surface, f->nfn, s->nfn);
+  int *pf = realloc(s->pf, (size_t)(s->npf + f->nfaces) * s->nfn * sizeof *pf);
+  SA_REQUIRE(pf, SA_ERR_MEMORY, "cannot grow pressure face list");
+  memcpy(pf + (size_t)s->npf * s->nfn, f->faces, (size_t)f->nfaces * s->nfn * sizeof *pf);
+  s->pf = pf;
+  s->npf += f->nfaces;
+  return 0;
+}
+
+int fem_solver_set_gravity(FemSolver *s, const double g[3]) {
+  for (int c = 0; c < 3; c++) s->g_t[c] = g[c];
+  return 0;
+}
+
+/* ------------------------------------------------------------------ setup */
+
+static int cmp_int(const void *a, const void *b) {
+  int x = *(const int *)a, y = *(const int *)b;
+  return (x > y) - (x < y);
+}
+
+static int find_sorted(const int *a, int lo, int hi, int key) { /* [lo, hi) */
+  hi--;
+  while (lo <= hi) {
+    int mid = (lo + hi) / 2;
+    if (a[mid] < key) lo = mid + 1;
+    else if (a[mid] > key) hi = mid - 1;
+    else return mid;
+  }
+  return -1;
+}
+
+/* Node graph (column-wise adjacency incl. self, sorted) from element connectivity. */
+static int build_node_graph(FemSolver *s) {
+  const FemMesh *m = s->m;
+  int N = s->N, nen = s->nen, ne = m->nelem;
+  int *n2e_ptr, *n2e, *mark, *cnt;
+  SA_CALLOC(n2e_ptr, N + 1);
+  SA_CALLOC(n2e, (size_t)ne * nen);
+  SA_CALLOC(mark, N);
+  SA_CALLOC(cnt, N);
+  for (int e = 0; e < ne; e++)
+    for (int a = 0; a < nen; a++) n2e_ptr[m->conn[(size_t)e * nen + a] + 1]++;
+  for (int i = 0; i < N; i++) n2e_ptr[i + 1] += n2e_ptr[i];
+  for (int e = 0; e < ne; e++)
+    for (int a = 0; a < nen; a++) {
+      int A = m->conn[(size_t)e * nen + a];
+      n2e[n2e_ptr[A] + cnt[A]++] = e;
+    }
+  for (int i = 0; i < N; i++) mark[i] = -1;
+  /* two passes: count, then fill */
+  SA_CALLOC(s->adj_ptr, N + 1);
+  for (int pass = 0; pass < 2; pass++) {
+    for (int i = 0; i < N; i++) mark[i] = -1;
+    for (int B = 0; B < N; B++) {
+      int k = 0;
+      for (int t = n2e_ptr[B]; t < n2e_ptr[B + 1]; t++) {
+        const int *c = m->conn + (size_t)n2e[t] * nen;
+        for (int a = 0; a < nen; a++)
+          if (mark[c[a]] != B) {
+            mark[c[a]] = B;
+            if (pass) s->adj[s->adj_ptr[B] + k] = c[a];
+            k++;
+          }
+      }
+      if (!pass) s->adj_ptr[B + 1] = k;
+      else qsort(s->adj + s->adj_ptr[B], (size_t)k, sizeof(int), cmp_int);
+    }
+    if (!pass) {
+      for (int i = 0; i < N; i++) s->adj_ptr[i + 1] += s->adj_ptr[i];
+      SA_CALLOC(s->adj, s->adj_ptr[N]);
+    }
+  }
+  free(n2e_ptr);
+  free(n2e);
+  free(mark);
+  free(cnt);
+  return 0;
+}
+
+/* Free-dof CSC pattern (full, sorted) + slot map per node pair (9 entries, -1 = constrained). */
+static int build_pattern(FemSolver *s) {
+  int N = s->N;
+  SA_CALLOC(s->eq, s->ndof);
+  int nf = 0;
+  for (int A = 0; A < N; A++)
+    for (int c = 0; c < 3; c++) s->eq[3 * A + c] = (s->fixmask[A] >> c & 1) ? -1 : nf++;
+  s->nfree = nf;
+  SA_REQUIRE(nf > 0, SA_ERR_INPUT, "every degree of freedom is fixed");
+  SA_CALLOC(s->colptr, nf + 1);
+  SA_CALLOC(s->diag, nf);
+  long npairs = s->adj_ptr[N];
+  SA_CALLOC(s->slot9, (size_t)npairs * 9);
+  for (long k = 0; k < npairs * 9; k++) s->slot9[k] = -1;
+  long nnz = 0;
+  for (int B = 0; B < N; B++)
+    for (int j = 0; j < 3; j++) {
+      if (s->eq[3 * B + j] < 0) continue;
+      for (int t = s->adj_ptr[B]; t < s->adj_ptr[B + 1]; t++) {
+        int A = s->adj[t];
+        for (int i = 0; i < 3; i++)
+          if (s->eq[3 * A + i] >= 0) nnz++;
+      }
+    }
+  SA_REQUIRE(nnz < 2147483647L, SA_ERR_INPUT, "tangent too large for 32-bit indices");
+  s->nnz = nnz;
+  SA_CALLOC(s->rowind, nnz);
+  SA_CALLOC(s->val, nnz);
+  long k = 0;
+  for (int B = 0; B < N; B++)
+    for (int j = 0; j < 3; j++) {
+      int col = s->eq[3 * B + j];
+      if (col < 0) continue;
+      s->colptr[col] = (int)k;
+      for (int t = s->adj_ptr[B]; t < s->adj_ptr[B + 1]; t++) {
+        int A = s->adj[t];
+        for (int i = 0; i < 3; i++) {
+          int row = s->eq[3 * A + i];
+          if (row < 0) continue;
+          if (row == col) s->diag[col] = (int)k;
+          s->slot9[(size_t)t * 9 + 3 * i + j] = (int)k;
+          s->rowind[k++] = row;
+        }
+      }
+    }
+  s->colptr[nf] = (int)k;
+  return 0;
+}
+
+/* Pair index (row node A, column node B) of every element / face node pair. */
+static int build_pair_maps(FemSolver *s) {
+  const FemMesh *m = s->m;
+  int nen = s->nen;
+  SA_CALLOC(s->epair, (size_t)m->nelem * nen * nen);
+  for (int e = 0; e < m->nelem; e++) {
+    const int *c = m->conn + (size_t)e * nen;
+    for (int a = 0; a < nen; a++)
+      for (int b = 0; b < nen; b++) {
+        int t = find_sorted(s->adj, s->adj_ptr[c[b]], s->adj_ptr[c[b] + 1], c[a]);
+        SA_REQUIRE(t >= 0, SA_ERR_INTERNAL, "node pair missing from the graph");
+        s->epair[((size_t)e * nen + a) * nen + b] = t;
+      }
+  }
+  int nfn = s->nfn;
+  SA_CALLOC(s->fpair, (size_t)s->npf * nfn * nfn);
+  for (int f = 0; f < s->npf; f++) {
+    const int *c = s->pf + (size_t)f * nfn;
+    for (int a = 0; a < nfn; a++)
+      for (int b = 0; b < nfn; b++) {
+        int t = find_sorted(s->adj, s->adj_ptr[c[b]], s->adj_ptr[c[b] + 1], c[a]);
+        SA_REQUIRE(t >= 0, SA_ERR_INPUT, "pressure face node pair not in one element");
+        s->fpair[((size_t)f * nfn + a) * nfn + b] = t;
+      }
+  }
+  return 0;
+}
+
+/* Greedy element colouring: no two elements of a colour share a node, so the scatter of a
+ * colour runs in parallel without locks. */
+static int build_colors(FemSolver *s) {
+  const FemMesh *m = s->m;
+  int nen = s->nen, ne = m->nelem;
+  uint64_t *used;
+  int *col;
+  SA_CALLOC(used, (size_t)s->N * MAXCOL_WORDS);
+  SA_CALLOC(col, ne);
+  int ncol = 0;
+  for (int e = 0; e < ne; e++) {
+    const int *c = m->conn + (size_t)e * nen;
+    uint64_t any[MAXCOL_WORDS] = {0};
+    for (int a = 0; a < nen; a++)
+      for (int w = 0; w < MAXCOL_WORDS; w++) any[w] |= used[(size_t)c[a] * MAXCOL_WORDS + w];
+    int k = -1;
+    for (int w = 0; w < MAXCOL_WORDS && k < 0; w++)
+      if (~any[w]) k = 64 * w + __builtin_ctzll(~any[w]);
+    if (k < 0) {
+      free(used);
+      free(col);
+      return SA_ERROR(SA_ERR_INTERNAL, "more than %d element colours", 64 * MAXCOL_WORDS);
+    }
+    col[e] = k;
+    if (k + 1 > ncol) ncol = k + 1;
+    for (int a = 0; a < nen; a++) used[(size_t)c[a] * MAXCOL_WORDS + k / 64] |= 1ULL << (k % 64);
+  }
+  s->ncolors = ncol;
+  SA_CALLOC(s->color_ptr, ncol + 1);
+  SA_CALLOC(s->color_elem, ne);
+  for (int e = 0; e < ne; e++) s->color_ptr[col[e] + 1]++;
+  for (int k = 0; k < ncol; k++) s->color_ptr[k + 1] += s->color_ptr[k];
+  int *fill;
+  SA_CALLOC(fill, ncol);
+  for (int e = 0; e < ne; e++) s->color_elem[s->color_ptr[col[e]] + fill[col[e]]++] = e;
+  free(fill);
+  free(used);
+  free(col);
+  return 0;
+}
+
+int fem_solver_setup(FemSolver *s) {
+  SA_REQUIRE(!s->setup_done, SA_ERR_INPUT, "fem_solver_setup called twice");
+  const FemMesh *m = s->m;
+  double t0 = sa_time_now();
+  SA_CHECK(build_node_graph(s));
+  SA_CHECK(build_pattern(s));
+  SA_CHECK(build_pair_maps(s));
+  SA_CHECK(build_colors(s));
+
+  int ne = m->nelem, nd = s->ndof, nf = s->nfree;
+  SA_CALLOC(s->hoff, ne + 1);
+  for (int e = 0; e < ne; e++) {
+    int r = m->region ? m->region[e] : 0;
+    s->hoff[e + 1] = s->hoff[e] + s->nqp * s->mats[r].nhist;
+  }
+  SA_CALLOC(s->hist_c, s->hoff[ne]);
+  SA_CALLOC(s->hist_t, s->hoff[ne]);
+
+  double **vecs[] = {&s->u, &s->x, &s->v, &s->acc, &s->u_last, &s->v_last, &s->a_last,
+                     &s->u_prev, &s->fn_c, &s->fn_t, &s->up_c, &s->up_t, &s->fint, &s->q,
+                     &s->gv, &s->fdead, &s->res_n, &s->u_it};
+  for (size_t i = 0; i < sizeof vecs / sizeof *vecs; i++) SA_CALLOC(*vecs[i], nd);
+  double **fvecs[] = {&s->R, &s->da, &s->db, &s->du, &s->rhs, &s->qf, &s->gf};
+  for (size_t i = 0; i < sizeof fvecs / sizeof *fvecs; i++) SA_CALLOC(*fvecs[i], nf);
+  SA_CALLOC(s->mlump, s->N);
+  memcpy(s->x, m->xyz, (size_t)nd * sizeof *s->x);
+
+  /* lumped mass (gravity, dynamics) */
+  double X[30], mm[10];
+  for (int e = 0; e < ne; e++) {
+    const int *c = m->conn + (size_t)e * s->nen;
+    for (int a = 0; a < s->nen; a++)
+      for (int k = 0; k < 3; k++) X[3 * a + k] = m->xyz[3 * c[a] + k];
+    int r = m->region ? m->region[e] : 0;
+    fem_element_lumped_mass(m->etype, X, s->mats[r].rho, mm);
+    for (int a = 0; a < s->nen; a++) s->mlump[c[a]] += mm[a];
+  }
+
+  SA_CHECK(fem_linsolve_create(nf, s->colptr, s->rowind, s->prm.threads, &s->lin));
+  FemLinInfo li;
+  fem_linsolve_info(s->lin, &li);
+  s->st.nnodes = s->N;
+  s->st.nelem = ne;
+  s->st.ndof = nd;
+  s->st.nfree = nf;
+  s->st.nnz_k = s->nnz;
+  s->st.nnz_l = li.nnz_l;
+  s->st.t_symbolic = sa_time_now() - t0;
+  s->st.ncolors = s->ncolors;
+  s->setup_done = 1;
+
+  /* reference cavity volume */
+  s->V_ref = 0.0;
+  for (int f = 0; f < s->npf; f++) {
+    double xf[18];
+    const int *c = s->pf + (size_t)f * s->nfn;
+    for (int a = 0; a < s->nfn; a++)
+      for (int k = 0; k < 3; k++) xf[3 * a + k] = m->xyz[3 * c[a] + k];
+    s->V_ref += fem_face_volume(s->nfn, xf, NULL, NULL);
+  }
+  s->V = s->V_c = s->V_t = s->V_last = s->V_prev = s->V_goal = s->V_ref;
+  sa_log(SA_LOG_INFO, "fem",
+         "setup: %d nodes, %d %s elements, %d free dofs, nnz(K) %ld, nnz(L) %.3g (fill %.1f), "
+         "%d colours, %d pressure faces, V0 = %.6g m^3, symbolic %.3f s",
+         s->N, ne, m->etype == FEM_TET10 ? "tet10" : "tet4", nf, s->nnz, li.nnz_l,
+         li.nnz_l / (0.5 * (s->nnz + nf)), s->ncolors, s->npf, s->V_ref, s->st.t_symbolic);
+  return 0;
+}
+
+/* ------------------------------------------------------------------ assembly */
+
+/* f_int, q, V, g (all dofs) and, if want_K, the tangent values over the free dofs at x with
+ * pressure p. Returns SA_ERR_INVERTED if an element inverted (state otherwise undefined). */
+static int assemble(FemSolver *s, const double *x, double p, int want_K) {
+  double t0 = sa_time_now();
+  const FemMesh *m = s->m;
+  int nen = s->nen, nd = 3 * nen;
+  memset(s->fint, 0, (size_t)s->ndof * sizeof *s->fint);
+  if (want_K) memset(s->val, 0, (size_t)s->nnz * sizeof *s->val);
+  double energy = 0.0, min_detF = INFINITY;
+  int n_inv = 0;
+  for (int col = 0; col < s->ncolors; col++) {
+    int e0 = s->color_ptr[col], e1 = s->color_ptr[col + 1];
+#pragma omp parallel for num_threads(s->prm.threads) schedule(dynamic, 32) \
+    reduction(+ : energy, n_inv) reduction(min : min_detF)
+    for (int t = e0; t < e1; t++) {
+      int e = s->color_elem[t];
+      const int *c = m->conn + (size_t)e * nen;
+      double X[30], xe[30];
+      FemElemOut out;
+      for (int a = 0; a < nen; a++)
+        for (int k = 0; k < 3; k++) {
+          X[3 * a + k] = m->xyz[3 * c[a] + k];
+          xe[3 * a + k] = x[3 * c[a] + k];
+        }
+      int r = m->region ? m->region[e] : 0;
+      int rc = fem_element_tl(m->etype, X, xe, &s->mats[r], s->hist_c + s->hoff[e],
+                              s->hist_t + s->hoff[e], want_K, &out);
+      if (rc != 0 || !isfinite(out.energy)) {
+        n_inv++;
+        continue;
+      }
+      energy += out.energy;
+      if (out.min_detF < min_detF) min_detF = out.min_detF;
+      for (int a = 0; a < nen; a++)
+        for (int k = 0; k < 3; k++) s->fint[3 * c[a] + k] += out.fe[3 * a + k];
+      if (!want_K) continue;
+      const int *ep = s->epair + (size_t)e * nen * nen;
+      for (int a = 0; a < nen; a++)
+        for (int b = 0; b < nen; b++) {
+          const int *sl = s->slot9 + (size_t)ep[a * nen + b] * 9;
+          const double *Kab = out.Ke + (size_t)(3 * a) * nd + 3 * b;
+          for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+              int k = sl[3 * i + j];
+              if (k >= 0) s->val[k] += Kab[i * nd + j];
+            }
+        }
+    }
+  }
+  if (n_inv) sa_error_clear();
+  s->energy = energy;
+  s->min_detF = min_detF;
+  s->n_inverted = n_inv;
+
+  /* pressure faces: load per unit pressure q, its stiffness, enclosed volume and gradient */
+  memset(s->q, 0, (size_t)s->ndof * sizeof *s->q);
+  memset(s->gv, 0, (size_t)s->ndof * sizeof *s->gv);
+  double V = 0.0;
+  int nfn = s->nfn, nfd = 3 * nfn;
+  for (int f = 0; f < s->npf; f++) {
+    const int *c = s->pf + (size_t)f * nfn;
+    double xf[18], fe[18], Ke[324], dv[18];
+    for (int a = 0; a < nfn; a++)
+      for (int k = 0; k < 3; k++) xf[3 * a + k] = x[3 * c[a] + k];
+    fem_face_pressure(nfn, xf, 1.0, fe, want_K ? Ke : NULL);
+    V += fem_face_volume(nfn, xf, dv, NULL);
+    for (int a = 0; a < nfn; a++)
+      for (int k = 0; k < 3; k++) {
+        s->q[3 * c[a] + k] += fe[3 * a + k];
+        s->gv[3 * c[a] + k] += dv[3 * a + k];
+      }
+    if (!want_K || p == 0.0) continue;
+    const int *fp = s->fpair + (size_t)f * nfn * nfn;
+    for (int a = 0; a < nfn; a++)
+      for (int b = 0; b < nfn; b++) {
+        const int *sl = s->slot9 + (size_t)fp[a * nfn + b] * 9;
+        const double *Kab = Ke + (size_t)(3 * a) * nfd + 3 * b;
+        for (int i = 0; i < 3; i++)
+          for (int j = 0; j < 3; j++) {
+            int k = sl[3 * i + j];
+            if (k >= 0) s->val[k] += p * Kab[i * nfd + j];
+          }
+      }
+  }
+  s->V = V;
+  double dt = sa_time_now() - t0;
+  s->st.t_assemble += dt;
+  s->st.n_assemble++;
+  sa_timing_add("fem assemble", dt);
+  return n_inv ? SA_ERR_INVERTED : 0;
+}
+
+/* ------------------------------------------------------------------ loads */
+
+static double nrm2(const double *a, int n) {
+  double s = 0;
+  for (int i = 0; i < n; i++) s += a[i] * a[i];
+  return sqrt(s);
+}
+
+static double dot(const double *a, const double *b, int n) {
+  double s = 0;
+  for (int i = 0; i < n; i++) s += a[i] * b[i];
+  return s;
+}
+
+/* Dead loads and prescribed displacements at ramp parameter lam. */
+static void apply_loads(FemSolver *s, double lam) {
+  for (int A = 0; A < s->N; A++)
+    for (int c = 0; c < 3; c++) {
+      int d = 3 * A + c;
+      double g = s->g_c[c] + lam * (s->g_t[c] - s->g_c[c]);
+      s->fdead[d] = s->fn_c[d] + lam * (s->fn_t[d] - s->fn_c[d]) + s->mlump[A] * g;
+      if (s->eq[d] < 0) {
+        s->u[d] = s->up_c[d] + lam * (s->up_t[d] - s->up_c[d]);
+        s->x[d] = s->m->xyz[d] + s->u[d];
+      }
+    }
+  if (s->control == FEM_CONTROL_LOAD) s->p = s->p_c + lam * (s->p_t - s->p_c);
+  else s->V_goal = s->V_c + lam * (s->V_t - s->V_c);
+}
+
+int fem_solver_set_control(FemSolver *s, FemControl control) {
+  if (control == FEM_CONTROL_VOLUME)
+    SA_REQUIRE(s->npf > 0, SA_ERR_INPUT, "volume control needs a pressure surface");
+  s->control = control;
+  s->V_c = s->V_t = s->V;
+  s->p_c = s->p_t = s->p;
+  return 0;
+}
+
+int fem_solver_set_pressure(FemSolver *s, double p) {
+  SA_REQUIRE(isfinite(p), SA_ERR_INPUT, "pressure %g is not finite", p);
+  s->p_t = p;
+  return 0;
+}
+
+int fem_solver_set_volume(FemSolver *s, double volume) {
+  SA_REQUIRE(isfinite(volume) && volume > 0, SA_ERR_INPUT, "cavity volume %g must be > 0", volume);
+  s->V_t = volume;
+  return 0;
+}
+
+int fem_solver_set_prescribed(FemSolver *s, int n, const int *nodes, int comp, double value) {
+  SA_REQUIRE(s->setup_done, SA_ERR_INPUT, "prescribed displacements are set after setup");
+  SA_REQUIRE(comp >= 0 && comp < 3, SA_ERR_INPUT, "component %d not in 0..2", comp);
+  for (int k = 0; k < n; k++) {
+    int d = 3 * nodes[k] + comp;
+    SA_REQUIRE(nodes[k] >= 0 && nodes[k] < s->N && s->eq[d] < 0, SA_ERR_INPUT,
+               "node %d component %d is not fixed", nodes[k], comp);
+    s->up_t[d] = value;
+  }
+  return 0;
+}
+
+int fem_solver_set_nodal_forces(FemSolver *s, int n, const int *nodes, const double *f) {
+  for (int k = 0; k < n; k++) {
+    int A = nodes[k];
+    if (A < 0 || A >= s->N) return SA_ERROR(SA_ERR_INPUT, "node %d out of range", A);
+    s->fn_t[3 * A] = f[3 * k];
+    s->fn_t[3 * A + 1] = f[3 * k + 1];
+    s->fn_t[3 * A + 2] = f[3 * k + 2];
+  }
+  return 0;
+}
+
+void fem_solver_clear_nodal_forces(FemSolver *s) {
+  memset(s->fn_t, 0, (size_t)s->ndof * sizeof *s->fn_t);
+}
+
+void fem_solver_set_monitor(FemSolver *s, FemMonitor fn, void *ctx) {
+  s->mon = fn;
+  s->mon_ctx = ctx;
+}
+
+/* ------------------------------------------------------------------ Newton */
+
+typedef struct {
+  int dynamic;
+  double dt, beta, gamma, alpha; /* Newmark/HHT for this substep */
+} StepKind;
+
+/* Residual on free dofs at the last assembled state; returns ||R||, and the force scale fref
+ * (max of the internal-force norm incl. reactions and the external-force norm). */
+static double residual(FemSolver *s, const StepKind *sk, double *fref) {
+  double fe2 = 0, fi2 = 0, r2 = 0;
+  for (int d = 0; d < s->ndof; d++) {
+    double fext = s->fdead[d] + s->p * s->q[d];
+    double r = s->fint[d] - fext;
+    fi2 += s->fint[d] * s->fint[d];
+    int k = s->eq[d];
+    if (k < 0) continue;
+    fe2 += fext * fext;
+    if (sk->dynamic) {
+      double M = s->mlump[d / 3];
+      /* HHT: M a + C v + (1 + alpha) r_{n+1} - alpha r_n, alpha in [-1/3, 0] */
+      r = M * (s->acc[d] + s->prm.mass_damping * s->v[d]) + (1 + sk->alpha) * r -
+          sk->alpha * s->res_n[d];
+    }
+    s->R[k] = r;
+    r2 += r * r;
+  }
+  *fref = fmax(sqrt(fi2), sqrt(fe2));
+  return sqrt(r2);
+}
+
+/* Newmark kinematics of the current u from the substep start state. */
+static void newmark_update(FemSolver *s, const StepKind *sk) {
+  double dt = sk->dt, b = sk->beta, g = sk->gamma;
+  for (int d = 0; d < s->ndof; d++) {
+    double a = (s->u[d] - s->u_last[d] - dt * s->v_last[d]) / (b * dt * dt) -
+               (0.5 / b - 1.0) * s->a_last[d];
+    s->acc[d] = a;
+    s->v[d] = s->v_last[d] + dt * ((1 - g) * s->a_last[d] + g * a);
+  }
+}
+
+static int factorize(FemSolver *s, const StepKind *sk) {
+  if (sk->dynamic) {
+    double cm = 1.0 / (sk->beta * sk->dt * sk->dt) +
+                s->prm.mass_damping * sk->gamma / (sk->beta * sk->dt);
+    for (long k = 0; k < s->nnz; k++) s->val[k] *= 1 + sk->alpha;
+    for (int d = 0; d < s->ndof; d++)
+      if (s->eq[d] >= 0) s->val[s->diag[s->eq[d]]] += cm * s->mlump[d / 3];
+  }
+  int sym = s->prm.linsolver == FEM_LINSOLVER_AUTO;
+  if (sym) {
+    double asym = fem_linsolve_asymmetry(s->lin, s->val);
+    if (asym > s->prm.sym_tol) {
+      sym = 0;
+      sa_log(s->last_sym ? SA_LOG_INFO : SA_LOG_DEBUG, "fem",
+             "tangent not symmetric (max|K-K^T|/max|K| = %.2e > %.0e): UMFPACK LU", asym,
+             s->prm.sym_tol);
+    }
+  }
+  double t0 = sa_time_now();
+  int rc = fem_linsolve_factorize(s->lin, s->val, sym);
+  s->st.t_factor += sa_time_now() - t0;
+  s->st.n_factor++;
+  FemLinInfo li;
+  fem_linsolve_info(s->lin, &li);
+  if (li.not_pd) {
+    s->saw_not_pd = s->fail_not_pd = 1;
+    sa_log(s->last_sym ? SA_LOG_INFO : SA_LOG_DEBUG, "fem",
+           "tangent not positive definite (CHOLMOD): fallback to UMFPACK LU");
+  }
+  if (rc == 0 && li.kind == FEM_LIN_UMFPACK) {
+    s->rep.lu_fallbacks++;
+    s->st.n_lu++;
+  } else if (rc == 0) {
+    s->st.n_chol++;
+  }
+  s->last_sym = (rc == 0 && li.kind == FEM_LIN_CHOLMOD);
+  return rc;
+}
+
+static int linsolve(FemSolver *s, const double *b, double *x) {
+  double t0 = sa_time_now();
+  int rc = fem_linsolve_solve(s->lin, b, x);
+  s->st.t_solve += sa_time_now() - t0;
+  s->st.n_solve++;
+  return rc;
+}
+
+static void set_x(FemSolver *s) {
+  for (int d = 0; d < s->ndof; d++) s->x[d] = s->m->xyz[d] + s->u[d];
+}
+
+/* One substep: Newton from the current u (the predictor is applied by the caller) to
+ * equilibrium with the loads already applied. Lazy backtracking: a full step is taken; if the
+ * next assembly finds an inverted element, a NaN or a larger merit (residual norm, plus the
+ * volume-constraint violation in force units), the step is halved (up to 6 times).
+ * Returns 0, > 0 (recoverable: caller cuts the increment) or < 0 (fatal). */
+static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
+  const int vol = s->control == FEM_CONTROL_VOLUME;
+  const int nf = s->nfree;
+  int ls = 0, it = 0;
+  double r_prev = -1, r_first = -1, merit_prev = INFINITY, step_len = 1.0, dp = 0.0, gb = 0.0;
+  double du_norm = 0.0;
+  *iters = 0;
+  for (;;) {
+    if (sk->dynamic) newmark_update(s, sk);
+    int rc = assemble(s, s->x, s->p, 1);
+    double fref = 0, rnorm = INFINITY, c = 0, merit = INFINITY;
+    if (rc == 0) {
+      rnorm = residual(s, sk, &fref);
+      if (vol) c = s->V - s->V_goal;
+      double qn = 0;
+      if (vol && gb != 0.0) {
+        for (int d = 0; d < s->ndof; d++)
+          if (s->eq[d] >= 0) qn += s->q[d] * s->q[d];
+        merit = rnorm + sqrt(qn) * fabs(c) / fabs(gb);
+      } else {
+        merit = rnorm;
+      }
+    }
+    int bad = rc != 0 || !isfinite(rnorm);
+    if (it > 0 && s->prm.line_search && ls < 6 && (bad || merit > merit_prev)) {
+      step_len *= 0.5;
+      ls++;
+      for (int d = 0; d < s->ndof; d++)
+        if (s->eq[d] >= 0) s->u[d] = s->u_it[d] + step_len * s->du[s->eq[d]];
+      s->p = s->p_it + step_len * dp;
+      set_x(s);
+      continue;
+    }
+    if (bad) {
+      *iters = it;
+      if (rc == SA_ERR_INVERTED)
+        return SA_ERROR(SA_ERR_INVERTED, "%d element(s) inverted at iteration %d",
+                        s->n_inverted, it);
+      return SA_ERROR(SA_ERR_NAN, "residual is not finite at iteration %d", it);
+    }
+    double rate = r_prev > 0 ? rnorm / r_prev : 0.0;
+    if (vol)
+      sa_log(SA_LOG_DEBUG, "fem",
+             "step %d it %2d |R| %.3e |du| %.3e rate %.3f  p %.6g dV %.2e%s", step, it, rnorm,
+             du_norm, rate, s->p, c, ls ? "  (line search)" : "");
+    else
+      sa_log(SA_LOG_DEBUG, "fem", "step %d it %2d |R| %.3e |du| %.3e rate %.3f%s", step, it,
+             rnorm, du_norm, rate, ls ? "  (line search)" : "");
+    if (r_first < 0) r_first = rnorm;
+    int conv = rnorm <= s->prm.rtol * fref + s->prm.atol &&
+               (!vol || fabs(c) <= s->prm.vtol * s->V_ref);
+    if (conv) {
+      *iters = it;
+      return 0;
+    }
+    if (it >= s->prm.max_iter) {
+      *iters = it;
+      return SA_ERROR(SA_ERR_NOT_CONVERGED, "no convergence in %d iterations (|R| %.3e, %.3e x "
+                      "tolerance)", it, rnorm, rnorm / (s->prm.rtol * fref + s->prm.atol));
+    }
+    if (it >= 3 && rnorm > 1e6 * r_first) {
+      *iters = it;
+      return SA_ERROR(SA_ERR_NOT_CONVERGED, "Newton diverging (|R| grew from %.3e to %.3e)",
+                      r_first, rnorm);
+    }
+    /* new direction */
+    rc = factorize(s, sk);
+    if (rc) {
+      *iters = it;
+      return sa_error_push(rc, __func__, __FILE__, __LINE__);
+    }
+    for (int k = 0; k < nf; k++) s->rhs[k] = -s->R[k];
+    SA_CHECK(linsolve(s, s->rhs, s->da));
+    if (vol) {
+      for (int d = 0; d < s->ndof; d++)
+        if (s->eq[d] >= 0) {
+          s->qf[s->eq[d]] = s->q[d];
+          s->gf[s->eq[d]] = s->gv[d];
+        }
+      SA_CHECK(linsolve(s, s->qf, s->db));
+      gb = dot(s->gf, s->db, nf);
+      if (gb == 0.0 || !isfinite(gb)) {
+        *iters = it;
+        return SA_ERROR(SA_ERR_NOT_CONVERGED, "volume control: dV/dp = 0 (bordered system "
+                        "singular)");
+      }
+      dp = -(c + dot(s->gf, s->da, nf)) / gb;
+      for (int k = 0; k < nf; k++) s->du[k] = s->da[k] + dp * s->db[k];
+    } else {
+      dp = 0.0;
+      memcpy(s->du, s->da, (size_t)nf * sizeof *s->du);
+    }
+    du_norm = nrm2(s->du, nf);
+    memcpy(s->u_it, s->u, (size_t)s->ndof * sizeof *s->u);
+    s->p_it = s->p;
+    merit_prev = merit;
+    r_prev = rnorm;
+    ls = 0;
+    step_len = 1.0;
+    for (int d = 0; d < s->ndof; d++)
+      if (s->eq[d] >= 0) s->u[d] += s->du[s->eq[d]];
+    s->p += dp;
+    set_x(s);
+    it++;
+  }
+}
+
+/* ------------------------------------------------------------------ load stepping */
+
+static double path_coord(const FemSolver *s, double lam) {
+  if (s->control == FEM_CONTROL_VOLUME) return s->V_c + lam * (s->V_t - s->V_c);
+  if (s->npf > 0 && s->p_t != s->p_c) return s->p_c + lam * (s->p_t - s->p_c);
+  return s->lam_total + lam;
+}
+
+static void restore_last(FemSolver *s) {
+  memcpy(s->u, s->u_last, (size_t)s->ndof * sizeof *s->u);
+  memcpy(s->v, s->v_last, (size_t)s->ndof * sizeof *s->v);
+  memcpy(s->acc, s->a_last, (size_t)s->ndof * sizeof *s->acc);
+  s->p = s->p_last;
+  set_x(s);
+}
+
+static void commit_substep(FemSolver *s, double path, double dt) {
+  memcpy(s->u_prev, s->u_last, (size_t)s->ndof * sizeof *s->u);
+  memcpy(s->u_last, s->u, (size_t)s->ndof * sizeof *s->u);
+  memcpy(s->v_last, s->v, (size_t)s->ndof * sizeof *s->v);
+  memcpy(s->a_last, s->acc, (size_t)s->ndof * sizeof *s->acc);
+  double dV = s->V - s->V_last, dP = s->p - s->p_last;
+  if (s->npf > 0 && fabs(dV) > 1e-12 * s->V_ref && s->slope0 == 0.0 && dP != 0.0)
+    s->slope0 = dP / dV;
+  s->p_prev = s->p_last;
+  s->p_last = s->p;
+  s->V_prev = s->V_last;
+  s->V_last = s->V;
+  s->path_prev = s->path_last;
+  s->path_last = path;
+  s->have_prev = 1;
+  double *h = s->hist_c;
+  s->hist_c = s->hist_t;
+  s->hist_t = h;
+  for (int d = 0; d < s->ndof; d++) s->res_n[d] = s->fint[d] - s->fdead[d] - s->p * s->q[d];
+  s->time += dt;
+  s->fail_not_pd = 0;
+}
+
+/* Loads reached at ramp parameter lam become the committed loads. */
+static void commit_loads(FemSolver *s, double lam) {
+  for (int d = 0; d < s->ndof; d++) {
+    s->fn_c[d] += lam * (s->fn_t[d] - s->fn_c[d]);
+    s->up_c[d] += lam * (s->up_t[d] - s->up_c[d]);
+  }
+  for (int c = 0; c < 3; c++) s->g_c[c] += lam * (s->g_t[c] - s->g_c[c]);
+  if (s->control == FEM_CONTROL_LOAD) s->p_c += lam * (s->p_t - s->p_c);
+  else {
+    s->V_c += lam * (s->V_t - s->V_c);
+    s->p_c = s->p_t = s->p;
+  }
+  s->lam_total += lam;
+}
+
+static int diagnose_failure(FemSolver *s, double lam) {
+  double slope = (s->V_last != s->V_prev) ? (s->p_last - s->p_prev) / (s->V_last - s->V_prev) : NAN;
+  int flat = s->npf > 0 && s->slope0 > 0 && isfinite(slope) && slope < 0.05 * s->slope0;
+  commit_loads(s, lam);
+  if (s->control == FEM_CONTROL_LOAD && (s->fail_not_pd || flat)) {
+    snprintf(s->rep.reason, sizeof s->rep.reason,
+             "limit point under load control at p = %.6g Pa, V = %.6g m^3: increment cut below "
+             "%.1e; %s%s dp/dV = %.3g Pa/m^3 (initially %.3g); continue with volume control",
+             s->p_last, s->V_last, s->prm.dl_min,
+             s->fail_not_pd ? "tangent lost positive definiteness (CHOLMOD); " : "",
+             flat ? "pressure-volume curve flat:" : "", slope, s->slope0);
+    return SA_ERROR(SA_ERR_LIMIT_POINT, "%s", s->rep.reason);
+  }
+  snprintf(s->rep.reason, sizeof s->rep.reason,
+           "increment cut below %.1e at ramp parameter %.6g (p = %.6g Pa); last failure: %s",
+           s->prm.dl_min, lam, s->p_last, s->last_fail);
+  return SA_ERROR(SA_ERR_STEP_TOO_SMALL, "%s", s->rep.reason);
+}
+
+static int ramp(FemSolver *s, int dynamic, double dt_total) {
+  SA_REQUIRE(s->setup_done, SA_ERR_INPUT, "fem_solver_setup must be called before solving");
+  SA_REQUIRE(!dynamic || s->control == FEM_CONTROL_LOAD, SA_ERR_INPUT,
+             "implicit dynamics supports load control only");
+  memset(&s->rep, 0, sizeof s->rep);
+  static int global_step = 0;
+  double lam = 0.0, dl = s->dl_keep > 0 ? s->dl_keep : s->prm.dl_init;
+  s->fail_not_pd = 0;
+  while (lam < 1.0 - 1e-12) {
+    double dl_try = dl;
+    if (dl > 1.0 - lam || 1.0 - lam - dl < 1e-9) dl = 1.0 - lam;
+    double lam_b = lam + dl;
+    apply_loads(s, lam_b);
+    double path_b = path_coord(s, lam_b);
+    int use_pred = 0;
+    if (!dynamic && s->have_prev && s->path_last != s->path_prev) {
+      double f = (path_b - s->path_last) / (s->path_last - s->path_prev);
+      if (f > 0 && f <= 4) {
+        use_pred = 1;
+        for (int d = 0; d < s->ndof; d++)
+          if (s->eq[d] >= 0) s->u[d] = s->u_last[d] + f * (s->u_last[d] - s->u_prev[d]);
+        if (s->control == FEM_CONTROL_VOLUME) s->p = s->p_last + f * (s->p_last - s->p_prev);
+        set_x(s);
+      }
+    }
+    StepKind sk = {0};
+    if (dynamic) {
+      sk.dynamic = 1;
+      sk.dt = dl * dt_total;
+      sk.alpha = fmin(0.0, fmax(-1.0 / 3.0, s->prm.hht_alpha));
+      sk.beta = 0.25 * (1 - sk.alpha) * (1 - sk.alpha);
+      sk.gamma = 0.5 - sk.alpha;
+    }
+    int iters = 0;
+    global_step++;
+    int rc = newton(s, &sk, global_step, &iters);
+    s->rep.newton_iters += iters;
+    if (rc > 0 && use_pred) { /* retry once from the last converged state */
+      sa_error_clear();
+      restore_last(s);
+      apply_loads(s, lam_b);
+      rc = newton(s, &sk, global_step, &iters);
+      s->rep.newton_iters += iters;
+    }
+    s->rep.last_dl = dl;
+    if (rc == 0) {
+      commit_substep(s, path_b, sk.dt);
+      lam = lam_b;
+      s->rep.substeps++;
+      s->rep.lambda = lam;
+      sa_log(SA_LOG_DEBUG, "fem", "step %d converged: lambda %.4f (dl %.3g), %d iterations, "
+             "p %.6g Pa, V %.6g m^3", global_step, lam, dl, iters, s->p, s->V);
+      dl = dl_try; /* a cropped last increment does not shrink the next ramp's */
+      if (iters <= s->prm.easy_iter) dl = fmin(dl * s->prm.grow, s->prm.dl_max);
+      s->dl_keep = dl;
+      if (s->mon) {
+        int mrc = s->mon(s, s->mon_ctx);
+        if (mrc) {
+          commit_loads(s, lam);
+          return sa_error_push(mrc, __func__, __FILE__, __LINE__);
+        }
+      }
+      continue;
+    }
+    if (rc < 0) return sa_error_push(rc, __func__, __FILE__, __LINE__);
+    snprintf(s->last_fail, sizeof s->last_fail, "%s", sa_error_message());
+    sa_error_clear();
+    restore_last(s);
+    s->rep.cuts++;
+    dl *= s->prm.cut;
+    s->dl_keep = dl;
+    sa_log(SA_LOG_INFO, "fem", "step %d failed (%s): increment cut to %.3g", global_step,
+           s->last_fail, dl);
+    if (dl < s->prm.dl_min) {
+      apply_loads(s, lam);
+      return diagnose_failure(s, lam);
+    }
+  }
+  commit_loads(s, 1.0);
+  s->rep.lambda = 1.0;
+  snprintf(s->rep.reason, sizeof s->rep.reason,
+           "converged: targets reached in %d substep(s), %d cut(s), %d Newton iterations",
+           s->rep.substeps, s->rep.cuts, s->rep.newton_iters);
+  return 0;
+}
+
+int fem_solver_solve(FemSolver *s) {
+  SA_CHECK(ramp(s, 0, 0.0));
+  return 0;
+}
+
+int fem_solver_step_dynamic(FemSolver *s, double dt) {
+  SA_REQUIRE(dt > 0 && isfinite(dt), SA_ERR_INPUT, "time step %g must be > 0", dt);
+  SA_CHECK(ramp(s, 1, dt));
+  return 0;
+}
+
+void fem_solver_report(const FemSolver *s, FemSolveReport *rep) { *rep = s->rep; }
+
+/* ------------------------------------------------------------------ read-back */
+
+const double *fem_solver_positions(const FemSolver *s) { return s->x; }
+const double *fem_solver_displacements(const FemSolver *s) { return s->u; }
+const double *fem_solver_velocities(const FemSolver *s) { return s->v; }
+double fem_solver_pressure(const FemSolver *s) { return s->p; }
+double fem_solver_cavity_volume(const FemSolver *s) { return s->V; }
+double fem_solver_time(const FemSolver *s) { return s->time; }
+const FemMesh *fem_solver_mesh(const FemSolver *s) { return s->m; }
+
+int fem_solver_reactions(FemSolver *s, double *r) {
+  int rc = assemble(s, s->x, s->p, 0);
+  SA_REQUIRE(rc == 0, SA_ERR_NUMERICAL, "inverted elements in the converged state");
+  for (int d = 0; d < s->ndof; d++) r[d] = s->fint[d] - s->fdead[d] - s->p * s->q[d];
+  return 0;
+}
+
+int fem_solver_pressure_resultant(FemSolver *s, double F[3]) {
+  int rc = assemble(s, s->x, s->p, 0);
+  SA_REQUIRE(rc == 0, SA_ERR_NUMERICAL, "inverted elements in the converged state");
+  F[0] = F[1] = F[2] = 0;
+  for (int d = 0; d < s->ndof; d++) F[d % 3] += s->p * s->q[d];
+  return 0;
+}
+
+int fem_solver_element_stress(FemSolver *s, double *sigma, double *vm, double *lam) {
+  const FemMesh *m = s->m;
+  int nen = s->nen;
+  for (int e = 0; e < m->nelem; e++) {
+    const int *c = m->conn + (size_t)e * nen;
+    double X[30], xe[30], sg[9], lm[3];
+    for (int a = 0; a < nen; a++)
+      for (int k = 0; k < 3; k++) {
+        X[3 * a + k] = m->xyz[3 * c[a] + k];
+        xe[3 * a + k] = s->x[3 * c[a] + k];
+      }
+    int r = m->region ? m->region[e] : 0;
+    int rc = fem_element_stress(m->etype, X, xe, &s->mats[r], s->hist_c + s->hoff[e], sg, lm);
+    if (rc) return sa_error_push(rc, __func__, __FILE__, __LINE__);
+    if (sigma) memcpy(sigma + 9 * (size_t)e, sg, sizeof sg);
+    if (lam) memcpy(lam + 3 * (size_t)e, lm, sizeof lm);
+    if (vm) {
+      double d0 = sg[0] - sg[4], d1 = sg[4] - sg[8], d2 = sg[8] - sg[0];
+      vm[e] = sqrt(0.5 * (d0 * d0 + d1 * d1 + d2 * d2) +
+                   3.0 * (sg[1] * sg[1] + sg[2] * sg[2] + sg[5] * sg[5]));
+    }
+  }
+  return 0;
+}
+
+void fem_solver_stats(const FemSolver *s, FemSolverStats *st) { *st = s->st; }
+
+void fem_solver_destroy(FemSolver **ps) {
+  if (!ps || !*ps) return;
+  FemSolver *s = *ps;
+  fem_linsolve_destroy(&s->lin);
+  void *ptrs[] = {s->mats, s->fixmask, s->pf, s->eq, s->colptr, s->rowind, s->diag, s->val,
+                  s->adj_ptr, s->adj, s->slot9, s->epair, s->fpair, s->color_ptr,
+                  s->color_elem, s->hoff, s->hist_c, s->hist_t, s->u, s->x, s->v, s->acc,
+                  s->u_last, s->v_last, s->a_last, s->u_prev, s->fn_c, s->fn_t, s->up_c,
+                  s->up_t, s->mlump, s->fint, s->q, s->gv, s->fdead, s->res_n, s->R, s->da,
+                  s->db, s->du, s->rhs, s->qf, s->gf, s->u_it};
+  for (size_t i = 0; i < sizeof ptrs / sizeof *ptrs; i++) free(ptrs[i]);
+  free(s);
+  *ps = NULL;
+}

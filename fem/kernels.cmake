@@ -1,0 +1,7 @@
+# Element and material kernels of the FEM solver (library sa_fem_kernels).
+add_library(sa_fem_kernels
+  ${CMAKE_CURRENT_LIST_DIR}/fem_material.c
+  ${CMAKE_CURRENT_LIST_DIR}/fem_element.c
+  ${CMAKE_CURRENT_LIST_DIR}/fem_kernel_quad.c)
+target_include_directories(sa_fem_kernels PUBLIC ${CMAKE_CURRENT_LIST_DIR})
+target_link_libraries(sa_fem_kernels PUBLIC sa_core m)

@@ -1,0 +1,11 @@
+# Meshes through the Gmsh C API (library sa_fem_mesh): generation from meshes/*.geo, .msh reading,
+# node-order conversion to VTK, outward boundary faces, quality checks.
+find_library(GMSH_LIBRARY gmsh REQUIRED)
+find_path(GMSH_INCLUDE_DIR gmshc.h REQUIRED)
+add_library(sa_fem_mesh
+  ${CMAKE_CURRENT_LIST_DIR}/fem_mesh.c)
+target_include_directories(sa_fem_mesh PUBLIC ${CMAKE_CURRENT_LIST_DIR})
+target_include_directories(sa_fem_mesh PRIVATE ${GMSH_INCLUDE_DIR})
+target_link_libraries(sa_fem_mesh PUBLIC sa_core m PRIVATE ${GMSH_LIBRARY} Threads::Threads)
+# Where the .geo sources live, for tests and default case paths.
+set(SOFTACT_MESH_DIR ${CMAKE_SOURCE_DIR}/meshes CACHE INTERNAL "softact .geo sources")

@@ -1,0 +1,51 @@
+/* fem_kernels_bench.c - cost of the element kernels: microseconds per call of fem_element_tl
+ * (residual + tangent, and residual only) for tet4, straight tet10 (4-point rule) and curved
+ * tet10 (14-point rule), Yeoh silicone at K/mu = 500. Not a test; run by hand:
+ *   fem_kernels_bench [calls] */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "fem_element.h"
+#include "sa_log.h"
+#include "kt_util.h"
+
+#define NEL 64 /* distinct elements cycled through, so the data is not all in registers */
+
+static double bench(FemElemType t, double curve, int want_K, int calls, const FemMaterial *m)
+{
+  static double X[NEL][30], x[NEL][30];
+  static FemElemOut out;
+  int nen = (int)t;
+  for (int e = 0; e < NEL; e++) {
+    double F0[9];
+    kt_random_tet(nen, 0.2, curve, X[e]);
+    kt_random_F(0.2, kt_rand(0.9, 1.1), F0);
+    for (int a = 0; a < nen; a++)
+      for (int i = 0; i < 3; i++)
+        x[e][3 * a + i] = F0[3 * i] * X[e][3 * a] + F0[3 * i + 1] * X[e][3 * a + 1] +
+                          F0[3 * i + 2] * X[e][3 * a + 2] + kt_rand(-0.02, 0.02);
+  }
+  double sink = 0, t0 = sa_time_now();
+  for (int c = 0; c < calls; c++) {
+    int e = c % NEL;
+    if (fem_element_tl(t, X[e], x[e], m, NULL, NULL, want_K, &out)) return -1;
+    sink += out.fe[0] + out.Ke[31];
+  }
+  double dt = sa_time_now() - t0;
+  if (sink == 12345.678) printf(" ");
+  return 1e6 * dt / calls;
+}
+
+int main(int argc, char **argv)
+{
+  int calls = argc > 1 ? atoi(argv[1]) : 200000;
+  FemMaterial m = {.kind = FEM_MAT_YEOH, .c10 = 0.11e6, .c20 = 0.02e6, .kappa = 500 * 0.22e6};
+  printf("element           residual+tangent [us]   residual only [us]\n");
+  printf("tet4              %10.3f              %10.3f\n", bench(FEM_TET4, 0, 1, calls, &m),
+         bench(FEM_TET4, 0, 0, calls, &m));
+  printf("tet10 (4 qp)      %10.3f              %10.3f\n", bench(FEM_TET10, 0, 1, calls, &m),
+         bench(FEM_TET10, 0, 0, calls, &m));
+  printf("tet10 curved (14) %10.3f              %10.3f\n",
+         bench(FEM_TET10, 0.03, 1, calls / 3, &m), bench(FEM_TET10, 0.03, 0, calls / 3, &m));
+  return 0;
+}

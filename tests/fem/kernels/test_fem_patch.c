@@ -1,0 +1,133 @@
+/* test_fem_patch.c - patch test: a homogeneous deformation x = F X + c of a small distorted tet10
+ * mesh gives zero internal force at every interior node. The mesh: the 8 corners of a perturbed
+ * cube and one interior centre node, 12 tets (centre + each of the 12 triangles of the cube's
+ * surface); interior nodes are the centre and the 8 mid-nodes of the spokes. Both with straight
+ * edges (4-point rule) and with curved spokes and faces (mid-nodes displaced, 14-point rule).
+ * F constant means constant P and theta = J in every element, so f_a = P int grad N_a dV, whose
+ * sum over the patch vanishes for interior a when the rule integrates grad N det J0 exactly
+ * (degree 1 for straight, 3 for curved tet10). Tolerance: 1e-11 of the largest nodal force
+ * (round-off of sums of O(10) terms). Also: the net force on the patch is zero. */
+#include <stdio.h>
+#include <string.h>
+
+#include "fem_element.h"
+#include "sa_error.h"
+#include "kt_util.h"
+
+#define MAXN 64
+
+static int nnode;
+static double Xn[3 * MAXN];
+static int edges[MAXN][3]; /* a, b, mid node */
+static int nedge;
+
+static int mid_node(int a, int b, double curve)
+{
+  for (int e = 0; e < nedge; e++)
+    if ((edges[e][0] == a && edges[e][1] == b) || (edges[e][0] == b && edges[e][1] == a))
+      return edges[e][2];
+  int m = nnode++;
+  for (int k = 0; k < 3; k++) Xn[3 * m + k] = 0.5 * (Xn[3 * a + k] + Xn[3 * b + k]) + kt_rand(-curve, curve);
+  edges[nedge][0] = a, edges[nedge][1] = b, edges[nedge][2] = m;
+  nedge++;
+  return m;
+}
+
+static void patch(const FemMaterial *mat, double curve)
+{
+  int conn[12][10], ne = 0;
+  nnode = 9, nedge = 0;
+  for (int k = 0; k < 2; k++)
+    for (int j = 0; j < 2; j++)
+      for (int i = 0; i < 2; i++) {
+        double *X = Xn + 3 * (i + 2 * j + 4 * k);
+        X[0] = i + kt_rand(-0.15, 0.15), X[1] = j + kt_rand(-0.15, 0.15), X[2] = k + kt_rand(-0.15, 0.15);
+      }
+  const int c = 8;
+  Xn[24] = 0.5 + kt_rand(-0.1, 0.1), Xn[25] = 0.5 + kt_rand(-0.1, 0.1), Xn[26] = 0.5 + kt_rand(-0.1, 0.1);
+  for (int d = 0; d < 3; d++)
+    for (int s = 0; s < 2; s++) {
+      int u = (d + 1) % 3, v = (d + 2) % 3, g[2][2];
+      for (int p = 0; p < 2; p++)
+        for (int q = 0; q < 2; q++) {
+          int ijk[3];
+          ijk[d] = s, ijk[u] = p, ijk[v] = q;
+          g[p][q] = ijk[0] + 2 * ijk[1] + 4 * ijk[2];
+        }
+      int tri[2][3] = {{g[0][0], g[1][0], g[1][1]}, {g[0][0], g[1][1], g[0][1]}};
+      for (int t = 0; t < 2; t++) {
+        int n[4] = {tri[t][0], tri[t][1], tri[t][2], c};
+        double A[9];
+        for (int r = 0; r < 3; r++)
+          for (int k = 0; k < 3; k++) A[3 * r + k] = Xn[3 * n[r + 1] + k] - Xn[3 * n[0] + k];
+        if (kt_det3(A) < 0) {
+          int tmp = n[1];
+          n[1] = n[2], n[2] = tmp;
+        }
+        for (int a = 0; a < 4; a++) conn[ne][a] = n[a];
+        for (int e = 0; e < 6; e++) conn[ne][4 + e] = mid_node(n[kt_tet_edge[e][0]], n[kt_tet_edge[e][1]], curve);
+        ne++;
+      }
+    }
+  int interior[MAXN] = {0};
+  interior[c] = 1;
+  for (int e = 0; e < nedge; e++)
+    if (edges[e][0] == c || edges[e][1] == c) interior[edges[e][2]] = 1;
+
+  double F[9], off[3] = {0.3, -0.2, 0.7}, xn[3 * MAXN], f[3 * MAXN] = {0};
+  kt_random_F(0.3, kt_rand(0.8, 1.3), F);
+  for (int a = 0; a < nnode; a++)
+    for (int i = 0; i < 3; i++)
+      xn[3 * a + i] = F[3 * i] * Xn[3 * a] + F[3 * i + 1] * Xn[3 * a + 1] + F[3 * i + 2] * Xn[3 * a + 2] + off[i];
+  static FemElemOut out;
+  for (int e = 0; e < ne; e++) {
+    double X[30], x[30];
+    for (int a = 0; a < 10; a++)
+      for (int k = 0; k < 3; k++) X[3 * a + k] = Xn[3 * conn[e][a] + k], x[3 * a + k] = xn[3 * conn[e][a] + k];
+    if (fem_element_tl(FEM_TET10, X, x, mat, NULL, NULL, 0, &out)) {
+      fprintf(stderr, "patch (curve %g): element %d failed: %s\n", curve, e, sa_error_message());
+      kt_fail++;
+      return;
+    }
+    for (int a = 0; a < 10; a++)
+      for (int k = 0; k < 3; k++) f[3 * conn[e][a] + k] += out.fe[3 * a + k];
+  }
+  double fmax = kt_maxabs(f, 3 * nnode), sum[3] = {0, 0, 0};
+  char what[160];
+  if (fmax < 1e-3) {
+    fprintf(stderr, "patch: no boundary forces (deformation too small to test)\n");
+    kt_fail++;
+  }
+  int ninterior = 0;
+  for (int a = 0; a < nnode; a++) {
+    for (int k = 0; k < 3; k++) sum[k] += f[3 * a + k];
+    if (!interior[a]) continue;
+    ninterior++;
+    for (int k = 0; k < 3; k++) {
+      snprintf(what, sizeof what, "patch (curve %g): interior node %d force %d", curve, a, k);
+      kt_close(what, f[3 * a + k], 0, 1e-11 * fmax, 0);
+    }
+  }
+  if (ninterior != 9) {
+    fprintf(stderr, "patch: %d interior nodes, expected 9\n", ninterior);
+    kt_fail++;
+  }
+  for (int k = 0; k < 3; k++) {
+    snprintf(what, sizeof what, "patch (curve %g): net force %d", curve, k);
+    kt_close(what, sum[k], 0, 1e-11 * fmax, 0);
+  }
+}
+
+int main(void)
+{
+  FemMaterial ye = {.kind = FEM_MAT_YEOH, .c10 = 0.11, .c20 = 0.02, .c30 = 0.001, .kappa = 110};
+  FemMaterial mr = {.kind = FEM_MAT_MOONEY_RIVLIN, .c10 = 0.3, .c01 = 0.2, .kappa = 1000};
+  for (int rep = 0; rep < 3; rep++) {
+    patch(&ye, 0);
+    patch(&mr, 0);
+    patch(&ye, 0.04);
+    patch(&mr, 0.04);
+  }
+  if (kt_fail) fprintf(stderr, "%d checks failed\n", kt_fail);
+  return kt_fail != 0;
+}
