@@ -14,6 +14,8 @@ static const char *sa_level_names[] = {"ERROR", "WARN", "INFO", "DEBUG"};
 void sa_log_set_level(SaLogLevel level) { sa_level = level; }
 SaLogLevel sa_log_get_level(void) { return sa_level; }
 void sa_log_set_file(FILE *f) { sa_logfile = f; }
+static int sa_bar_active;
+void sa_log_bar_active(int active) { sa_bar_active = active; }
 
 void sa_log(SaLogLevel level, const char *tag, const char *fmt, ...) {
   char buf[2048];
@@ -23,6 +25,7 @@ void sa_log(SaLogLevel level, const char *tag, const char *fmt, ...) {
   va_end(ap);
   pthread_mutex_lock(&sa_log_lock);
   if (level <= sa_level) {
+    if (sa_bar_active) fputs("\r\033[K", stderr); /* the bar is redrawn on its next update */
     if (level <= SA_LOG_WARN)
       fprintf(stderr, "%s [%s] %s\n", sa_level_names[level], tag, buf);
     else

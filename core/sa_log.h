@@ -16,6 +16,9 @@ void sa_log_set_file(FILE *f);
 void sa_log(SaLogLevel level, const char *tag, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* A progress bar is drawn on the terminal's current line: log lines first clear it. */
+void sa_log_bar_active(int active);
+
 /* Monotonic wall time in seconds. */
 double sa_time_now(void);
 

@@ -69,6 +69,7 @@ static void sa_progress_emit(SaProgress *p, double now, int final) {
     }
     fputs(line, stderr);
     fflush(stderr);
+    sa_log_bar_active(!final);
   } else if (final) {
     if (total > 0)
       sa_log(SA_LOG_INFO, "progress", "%s: done, %ld/%ld in %s", p->label, done, total, tel);

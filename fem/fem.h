@@ -46,7 +46,8 @@ typedef struct {
   double atol;       /* absolute residual norm [N] */
   double vtol;       /* volume-constraint tolerance relative to the reference cavity volume */
   int max_iter;      /* Newton iterations per substep before it counts as diverged */
-  int line_search;   /* backtracking on the residual norm (also on inverted elements) */
+  int line_search;   /* backtracking on inverted elements, NaN, residual growth > ls_growth */
+  double ls_growth;  /* residual growth factor that triggers backtracking */
   double dl_init;    /* first load-parameter increment (fraction of the ramp) */
   double dl_min;     /* below this the ramp fails (limit point / step too small) */
   double dl_max;     /* largest increment */
@@ -142,6 +143,10 @@ int fem_solver_pressure_resultant(FemSolver *s, double F[3]);
  * stretches lam [out] 3*nelem (any may be NULL). */
 int fem_solver_element_stress(FemSolver *s, double *sigma, double *vm, double *lam);
 void fem_solver_stats(const FemSolver *s, FemSolverStats *st);
+/* Finite-difference check of the assembled tangent at the current state and pressure:
+ * rel_err [out] = |K v - (R(u + h v) - R(u - h v)) / 2h| / |K v| for a fixed pseudo-random v
+ * over the free dofs. Debugging and tests; allocates. */
+int fem_solver_check_tangent(FemSolver *s, double h, double *rel_err);
 const FemMesh *fem_solver_mesh(const FemSolver *s);
 void fem_solver_destroy(FemSolver **s);
 

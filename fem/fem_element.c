@@ -2,12 +2,14 @@
  * formulation, and follower-pressure / enclosed-volume face kernels (see fem_element.h).
  *
  * Solid: with reference gradients G_aJ = dN_a/dX_J, weights w_q (reference volume), F_q,
- * J_q = det F_q, H = F^-T, V = sum w_q, theta = (1/V) sum w_q J_q:
- *   Pi  = sum_q w_q W_iso(F_q) + V U(theta)
- *   f_ai = sum_q w_q Pt_iJ G_aJ,               Pt = P_iso + U'(theta) J H
- *   K    = sum_q w_q G_aJ At_iJkL G_bL + (U''(theta)/V) b_ai b_bk,
- *          At = A_iso + U'(theta) J (H_iJ H_kL - H_iL H_kJ),  b_ai = sum_q w_q J_q H_iJ G_aJ,
- * i.e. the pressure p = U'(theta) is constant per element and eliminated (condensed) exactly.
+ * J_q = det F_q, H = F^-T, V = sum w_q, theta = (1/V) sum w_q J_q, ks = kappa_s:
+ *   Pi   = sum_q w_q [W_iso(F_q) + (ks/2)(J_q - theta)^2] + V U(theta)
+ *   f_ai = sum_q w_q Pt_iJ G_aJ,     Pt = P_iso + p_q J H,  p_q = U'(theta) + ks (J_q - theta)
+ *   K    = sum_q w_q G_aJ At_iJkL G_bL + ((U''(theta) - ks)/V) b_ai b_bk,
+ *          At = A_iso + p_q J (H_iJ H_kL - H_iL H_kJ) + ks J^2 H_iJ H_kL,
+ *          b_ai = sum_q w_q J_q H_iJ G_aJ = V dtheta/dx_ai,
+ * using sum_q w_q (J_q - theta) = 0 (which removes the dtheta terms of the ks part); the
+ * pressure is eliminated (condensed) exactly at element level.
  * The B^T A B product is done per node a as T = G_a . A (3x9) then T . G_b, only for b >= a when
  * the law is symmetric.
  *
@@ -32,6 +34,8 @@ static const FemKqRule *tet_rule(FemElemType t, const double *X)
 }
 
 int fem_element_nqp(FemElemType t) { return t == FEM_TET4 ? 1 : FEM_KQ_MAX_QP; }
+
+int fem_element_nqp_used(FemElemType t, const double *X) { return tet_rule(t, X)->n; }
 
 /* Reference gradients G [out] and weight w [out] (rule weight x det dX/dxi) at point L. */
 static int tet_geom(int nen, const double *X, const double L[4], double wref, double G[][3],
@@ -85,7 +89,7 @@ int fem_element_tl(FemElemType t, const double *X, const double *x, const FemMat
   if (!(minJ > 0) || !(theta > 0))
     return SA_ERROR(SA_ERR_INVERTED, "inverted element: min det F = %g, theta = %g", minJ, theta);
 
-  double U, dU, d2U;
+  double U, dU, d2U, ks = fem_material_kappa_fluct(mat);
   fem_material_eval_vol(mat, theta, &U, &dU, &d2U);
   double energy = V * U;
   double *fe = out->fe, *Ke = out->Ke, bv[30];
@@ -100,12 +104,13 @@ int fem_element_tl(FemElemType t, const double *X, const double *x, const FemMat
     double W, P[9], A[81], cof[9], H[9];
     SA_CHECK(fem_material_eval_iso(mat, F, nh ? hist_old + q * nh : NULL,
                                    nh ? hist_new + q * nh : NULL, &W, P, want_K ? A : NULL));
-    energy += w * W;
+    double dJ = Jq[q] - theta, pq = dU + ks * dJ; /* quadrature-point pressure */
+    energy += w * (W + 0.5 * ks * dJ * dJ);
     fem_kt_cof(F, cof); /* J H */
     double iJ = 1 / Jq[q];
     for (int i = 0; i < 9; i++) {
       H[i] = cof[i] * iJ;
-      P[i] = w * (P[i] + dU * cof[i]);
+      P[i] = w * (P[i] + pq * cof[i]);
     }
     for (int a = 0; a < nen; a++) {
       const double *Ga = Gq[a];
@@ -116,13 +121,14 @@ int fem_element_tl(FemElemType t, const double *X, const double *x, const FemMat
       }
     }
     if (!want_K) continue;
-    /* At = w [A + U' (cof_iJ H_kL - cof_iL H_kJ)] */
+    /* At = w [A + p_q (cof_iJ H_kL - cof_iL H_kJ) + ks cof_iJ cof_kL] */
     for (int i = 0; i < 3; i++)
       for (int J = 0; J < 3; J++) {
-        double *Ar = A + 9 * (3 * i + J), cr = dU * cof[3 * i + J];
+        double *Ar = A + 9 * (3 * i + J), cr = pq * cof[3 * i + J], cs = ks * cof[3 * i + J];
         for (int k = 0; k < 3; k++)
           for (int L = 0; L < 3; L++)
-            Ar[3 * k + L] = w * (Ar[3 * k + L] + cr * H[3 * k + L] - dU * cof[3 * i + L] * H[3 * k + J]);
+            Ar[3 * k + L] = w * (Ar[3 * k + L] + cr * H[3 * k + L] + cs * cof[3 * k + L] -
+                                 pq * cof[3 * i + L] * H[3 * k + J]);
       }
     for (int a = 0; a < nen; a++) {
       const double *Ga = Gq[a];
@@ -145,7 +151,7 @@ int fem_element_tl(FemElemType t, const double *X, const double *x, const FemMat
   }
   out->energy = energy;
   if (!want_K) return 0;
-  double s = d2U / V;
+  double s = (d2U - ks) / V;
   for (int r = 0; r < ndof; r++) {
     double br = s * bv[r];
     double *Kr = Ke + r * ndof;
@@ -173,9 +179,10 @@ int fem_element_stress(FemElemType t, const double *X, const double *x, const Fe
     v += wq[q] * Jq[q];
     for (int i = 0; i < 9; i++) Fa[i] += wq[q] * Fq[q][i];
   }
-  double theta = v / V, dU;
+  double theta = v / V, dU, ks = fem_material_kappa_fluct(mat);
   fem_material_eval_vol(mat, theta, NULL, &dU, NULL);
-  /* sigma = (1/v) int sigma dv = (1/v) sum_q w_q Pt_q F_q^T; the volumetric part gives p = U'. */
+  /* sigma = (1/v) int sigma dv = (1/v) sum_q w_q Pt_q F_q^T; the volumetric part gives
+   * p = U'(theta) + ks (1/v) sum_q w_q J_q (J_q - theta). */
   for (int i = 0; i < 9; i++) sigma[i] = 0;
   for (int q = 0; q < R->n; q++) {
     double W, P[9];
@@ -188,7 +195,9 @@ int fem_element_stress(FemElemType t, const double *X, const double *x, const Fe
         sigma[3 * i + j] += wq[q] * s / v;
       }
   }
-  for (int i = 0; i < 3; i++) sigma[4 * i] += dU;
+  double pv = 0;
+  for (int q = 0; q < R->n; q++) pv += wq[q] * Jq[q] * (Jq[q] - theta);
+  for (int i = 0; i < 3; i++) sigma[4 * i] += dU + ks * pv / v;
   /* Principal stretches of the volume-averaged F, rescaled so that det F = theta (the element's
    * volume ratio in the mixed formulation); exact for a homogeneous deformation. */
   double dFa = fem_kt_det(Fa) / (V * V * V);

@@ -2,11 +2,23 @@
  *
  * Solid elements: tet4 and tet10 with the mean-dilatation (F-bar / P2-P0 three-field) mixed
  * formulation, the pressure condensed at element level: the element energy is
- *   Pi_e = int_Ve W_iso(F) dV + V_e U(theta_e),   theta_e = (1/V_e) int_Ve det F dV,
+ *   Pi_e = int_Ve [W_iso(F) + (kappa_s/2)(J - theta_e)^2] dV + V_e U(theta_e),
+ *   theta_e = (1/V_e) int_Ve det F dV,
  * a pure displacement functional whose gradient and Hessian are the internal force and a
- * consistent (symmetric for hyperelastic laws) tangent. Because the volume constraint is
- * enforced once per element instead of at every quadrature point, the element does not lock
- * for K/mu up to 1e4 (verified in tests/fem).
+ * consistent (symmetric for hyperelastic laws) tangent. The mean volume change is penalised with
+ * the full bulk modulus once per element (so the element does not lock, verified for K/mu up to
+ * 1e4), the part of J varying inside the element with kappa_s = min(kappa, mix_alpha mu0)
+ * (fem_material.h; default mix_alpha = 4). Why kappa_s: with kappa_s = 0 (plain P2-P0) every
+ * tet10 has three zero-energy modes (u = 2 (a.X) X - |X|^2 a: no deviatoric strain, zero mean
+ * dilatation) that a mesh with one or two elements through a wall restrains only weakly: a
+ * one-layer cantilever came out 44 % (K/mu = 1000) to 58 % (nu = 0.3) too soft; with
+ * kappa_s = 4 mu0 it is within 2.5 % of the converged answer, and K/mu = 1000 still does not lock
+ * (tests/fem/kernels/test_fem_locking.c). Because U(J) = (kappa/2)(J - 1)^2 is quadratic,
+ * kappa_s = kappa gives exactly the displacement element: compressible laws (the stiff parts,
+ * kappa = 2.2 mu) get it automatically.
+ * Quadrature: tet4 1 point; straight-sided tet10 4 points (degree 2); curved tet10 (a mid-node
+ * off its edge midpoint) 14 points (degree 5), because grad N det J0 is then cubic and the
+ * 4-point rule would fail the patch test (see fem_kernel_quad.h).
  *
  * Surface elements (tri3/tri6 faces, normal out of the solid): follower pressure and the
  * volume enclosed between a face and the origin (for cavity volume and volume control). */
@@ -30,15 +42,22 @@ typedef struct {
  * det F <= 0 at a quadrature point or theta <= 0. */
 int fem_element_tl(FemElemType t, const double *X, const double *x, const FemMaterial *mat,
                    const double *hist_old, double *hist_new, int want_K, FemElemOut *out);
+/* Quadrature points per element to allocate history for (the stride of hist_old/hist_new per
+ * element): 1 for tet4, 14 for tet10 (straight-sided tet10 use only the first 4). */
 int fem_element_nqp(FemElemType t);
+/* Quadrature points an element with reference coordinates X [in] actually uses (1, 4 or 14). */
+int fem_element_nqp_used(FemElemType t, const double *X);
 
-/* Element-averaged Cauchy stress sigma [out] 9 and principal stretches lam [out] 3
- * (descending), with the mixed formulation's volumetric part. */
+/* Element-averaged Cauchy stress sigma [out] 9 (current-volume average, (1/v) int sigma dv,
+ * including the mixed formulation's pressure) and principal stretches lam [out] 3 (descending)
+ * of the volume-averaged F rescaled to det = theta. hist [in]: converged history (NULL if
+ * nhist == 0). Returns SA_ERR_INVERTED for det F <= 0. */
 int fem_element_stress(FemElemType t, const double *X, const double *x, const FemMaterial *mat,
                        const double *hist, double sigma[9], double lam[3]);
 
-/* Lumped mass per node [out] nen (row-sum of the consistent mass, positive for tet10 by using
- * the HRZ scaling). */
+/* Lumped mass per node [out] nen: tet4 rho V/4; tet10 HRZ (consistent-mass diagonal scaled to
+ * the element mass; straight tet10: rho V/36 per corner, 4 rho V/27 per mid-node; all positive,
+ * unlike the row sum, which is negative at the corners). */
 void fem_element_lumped_mass(FemElemType t, const double *X, double rho, double *m);
 
 /* Follower pressure p on one face in the current configuration x [in] 3*nfn (normal out of the

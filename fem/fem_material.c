@@ -24,6 +24,14 @@ double fem_material_mu0(const FemMaterial *m)
   return 2 * (m->c10 + (m->kind == FEM_MAT_MOONEY_RIVLIN ? m->c01 : 0));
 }
 
+double fem_material_kappa_fluct(const FemMaterial *m)
+{
+  double a = m->mix_alpha == 0 ? FEM_MAT_MIX_ALPHA_DEFAULT : m->mix_alpha;
+  if (a < 0) return 0;
+  double k = a * fem_material_mu0(m);
+  return k < m->kappa ? k : m->kappa;
+}
+
 FemMaterial fem_material_from_e_nu(double E, double nu, double rho)
 {
   FemMaterial m = {0};

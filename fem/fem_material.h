@@ -32,14 +32,21 @@ typedef struct {
   double c10, c01, c20, c30; /* [Pa] */
   double kappa;              /* bulk modulus [Pa] */
   double rho;                /* density [kg/m^3] */
+  double mix_alpha;          /* mixed element: bulk modulus kept for the part of the volume
+                                change that varies inside an element, kappa_s = min(kappa,
+                                mix_alpha mu0); 0 selects FEM_MAT_MIX_ALPHA_DEFAULT, < 0 gives
+                                kappa_s = 0 (pure mean dilatation); see fem_element.h */
   int nhist;                 /* history variables per quadrature point (0 for hyperelastic),
                                 at most FEM_MAT_MAX_HIST */
 } FemMaterial;
 
 #define FEM_MAT_MAX_HIST 32
+#define FEM_MAT_MIX_ALPHA_DEFAULT 4.0
 
 /* Initial shear modulus mu0 = 2 (C10 + C01). */
 double fem_material_mu0(const FemMaterial *m);
+/* kappa_s = min(kappa, mix_alpha mu0) (see mix_alpha). */
+double fem_material_kappa_fluct(const FemMaterial *m);
 /* Build a stiff law from Young's modulus and Poisson's ratio. */
 FemMaterial fem_material_from_e_nu(double E, double nu, double rho);
 

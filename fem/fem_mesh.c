@@ -1,8 +1,7 @@
 /* fem_mesh.c - tetrahedral meshes through the Gmsh C API (gmshc.h).
  *
- * Generation: the .geo is opened with its parameters given to Gmsh as command-line numbers
- * (`-setnumber name value` in gmshInitialize's argv; Gmsh keeps them across the parser reset of
- * gmshOpen, so the .geo's `If(!Exists(name))` defaults see them), meshed in 3-D and, for order 2,
+ * Generation: a prelude .geo in a temporary folder defines the parameters (`name = value;`) and
+ * includes the .geo, so its `If(!Exists(name))` defaults see them; meshed in 3-D and, for order 2,
  * elevated with curved high-order nodes (Mesh.SecondOrderLinear = 0: mid-nodes on the CAD
  * geometry). Reading: gmshOpen of a .msh. Gmsh is not thread-safe and keeps global state, so
  * every use is one initialize/finalize session under a process-wide mutex.
@@ -27,6 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <gmshc.h>
 
@@ -46,11 +46,11 @@ static const int tet_mid[4][4] = {{-1, 4, 6, 7}, {4, -1, 5, 8}, {6, 5, -1, 9}, {
 /* Gmsh tet10 node k goes to VTK position gmsh_to_vtk[k]. */
 static const int gmsh_to_vtk10[10] = {0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
 
-/* 14-point degree-5 rule with positive weights (Walkington 2014), weights summing to 1/6: exact
+/* The classical 14-point degree-5 rule with positive weights (sum 1/6; checked to round-off on
+ * all monomials of degree <= 5): exact
  * for the cubic det J of a curved tet10, so it gives exact volumes. */
 #define NQ14 14
 static double q14_L[NQ14][4], q14_w[NQ14];
-static pthread_once_t q14_once = PTHREAD_ONCE_INIT;
 
 static void q14_init(void)
 {
@@ -94,6 +94,45 @@ static double tet_detJ(int nen, const double *X, const double L[4])
          J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
 }
 
+/* Check points for det J: tet10 corners, the 4-point rule and the 14-point rule (the kernels'
+ * rules); tet4 its centroid (det J is constant). */
+#define NCHECK (4 + 4 + NQ14)
+static double check_L[NCHECK][4];
+
+static void check_init(void)
+{
+  static const double g4a = 0.5854101966249685, g4b = 0.1381966011250105;
+  int np = 0;
+  for (int a = 0; a < 4; ++a, ++np)
+    for (int j = 0; j < 4; ++j) check_L[np][j] = (a == j);
+  for (int a = 0; a < 4; ++a, ++np)
+    for (int j = 0; j < 4; ++j) check_L[np][j] = (a == j) ? g4a : g4b;
+  q14_init();
+  for (int q = 0; q < NQ14; ++q, ++np) memcpy(check_L[np], q14_L[q], sizeof check_L[np]);
+}
+static pthread_once_t check_once = PTHREAD_ONCE_INIT;
+
+static void elem_coords(const FemMesh *m, int e, double *X);
+
+/* Smallest det J / 6 over the check points of element e [out] at point *where. */
+static double elem_min_detJ(const FemMesh *m, int e, int *where)
+{
+  double X[30];
+  elem_coords(m, e, X);
+  if (m->nen == 4) {
+    const double L[4] = {0.25, 0.25, 0.25, 0.25};
+    *where = 0;
+    return tet_detJ(4, X, L) / 6.0;
+  }
+  pthread_once(&check_once, check_init);
+  double dmin = INFINITY;
+  for (int p = 0; p < NCHECK; ++p) {
+    double d = tet_detJ(10, X, check_L[p]) / 6.0;
+    if (d < dmin) dmin = d, *where = p;
+  }
+  return dmin;
+}
+
 static void elem_coords(const FemMesh *m, int e, double *X)
 {
   for (int a = 0; a < m->nen; ++a)
@@ -108,7 +147,7 @@ static double elem_volume(const FemMesh *m, int e)
     const double L[4] = {0.25, 0.25, 0.25, 0.25};
     return tet_detJ(4, X, L) / 6.0;
   }
-  pthread_once(&q14_once, q14_init);
+  pthread_once(&check_once, check_init);
   double v = 0.0;
   for (int q = 0; q < NQ14; ++q) v += q14_w[q] * tet_detJ(10, X, q14_L[q]);
   return v;
@@ -151,47 +190,57 @@ static void gmsh_drain_log(char *err, size_t nerr)
   gmshLoggerStart(&ierr);
 }
 
-/* Start a session with numbers defined for the parser. Locks the Gmsh mutex. */
-static int gmsh_begin(const char *src, int nparams, const FemGeoParam *params, double h)
+/* Start a session. Locks the Gmsh mutex. */
+static int gmsh_begin(const char *src)
 {
-  int argc = 1;
-  char **argv = NULL, *store = NULL;
-  int n = nparams + (h > 0.0 ? 1 : 0);
-  argv = calloc((size_t)(1 + 3 * n), sizeof *argv);
-  store = calloc((size_t)(n ? n : 1), 32);
-  if (!argv || !store) {
-    free(argv);
-    free(store);
-    return SA_ERROR(SA_ERR_MEMORY, "cannot allocate Gmsh arguments");
-  }
-  argv[0] = "softact";
-  for (int i = 0; i < n; ++i) {
-    const char *name = (i < nparams) ? params[i].name : "h";
-    double value = (i < nparams) ? params[i].value : h;
-    int ok = name && (isalpha((unsigned char)name[0]) || name[0] == '_');
-    for (const char *c = name; ok && *c; ++c) ok = isalnum((unsigned char)*c) || *c == '_';
-    if (!ok || !isfinite(value)) {
-      free(argv);
-      free(store);
-      return SA_ERROR(SA_ERR_INPUT, "%s: bad geometry parameter '%s' = %g", src,
-                      name ? name : "(null)", value);
-    }
-    snprintf(store + 32 * i, 32, "%.17g", value);
-    argv[argc++] = "-setnumber";
-    argv[argc++] = (char *)name;
-    argv[argc++] = store + 32 * i;
-  }
-  pthread_mutex_lock(&gmsh_mutex);
+  char *argv[] = {"softact", NULL};
   int ierr = 0;
-  gmshInitialize(argc, argv, 0, &ierr);
-  free(argv);
-  free(store);
+  pthread_mutex_lock(&gmsh_mutex);
+  gmshInitialize(1, argv, 0, &ierr);
   if (ierr) {
     pthread_mutex_unlock(&gmsh_mutex);
     return SA_ERROR(SA_ERR_LIBRARY, "%s: Gmsh initialisation failed", src);
   }
-  gmshOptionSetNumber("General.Terminal", sa_log_get_level() >= SA_LOG_DEBUG ? 1 : 0, &ierr);
+  /* no terminal output: the logger forwards messages to sa_log (warnings WARN, rest DEBUG) */
+  gmshOptionSetNumber("General.Terminal", 0, &ierr);
   gmshLoggerStart(&ierr);
+  return 0;
+}
+
+/* Write dir/prelude.geo: `name = value;` for every parameter (and h), then Include of the
+ * absolute geo path. (Gmsh's `-setnumber` would do the same without a file, but Gmsh keeps
+ * command-line numbers for the whole process, so they would leak into later meshes.) */
+static int write_prelude(const char *geo, int nparams, const FemGeoParam *params, double h,
+                         char *dir, size_t ndir, char *prelude, size_t nprelude)
+{
+  char abs[4096];
+  SA_REQUIRE(realpath(geo, abs), SA_ERR_INPUT, "mesh source '%s' not found", geo);
+  SA_REQUIRE(!strchr(abs, '"'), SA_ERR_INPUT, "mesh source path '%s' contains a quote", abs);
+  for (int i = 0; i < nparams; ++i) {
+    const char *name = params[i].name;
+    int ok = name && (isalpha((unsigned char)name[0]) || name[0] == '_');
+    for (const char *c = name; ok && *c; ++c) ok = isalnum((unsigned char)*c) || *c == '_';
+    SA_REQUIRE(ok && isfinite(params[i].value), SA_ERR_INPUT,
+               "%s: bad geometry parameter '%s' = %g", geo, name ? name : "(null)",
+               params[i].value);
+  }
+  const char *tmp = getenv("TMPDIR");
+  snprintf(dir, ndir, "%s/softact-geo-XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
+  SA_REQUIRE(mkdtemp(dir), SA_ERR_IO, "cannot create a temporary folder %s", dir);
+  snprintf(prelude, nprelude, "%s/prelude.geo", dir);
+  FILE *f = fopen(prelude, "w");
+  if (!f) {
+    rmdir(dir);
+    return SA_ERROR(SA_ERR_IO, "cannot write %s", prelude);
+  }
+  for (int i = 0; i < nparams; ++i) fprintf(f, "%s = %.17g;\n", params[i].name, params[i].value);
+  if (h > 0.0) fprintf(f, "h = %.17g;\n", h);
+  fprintf(f, "Include \"%s\";\n", abs);
+  if (fclose(f)) {
+    remove(prelude);
+    rmdir(dir);
+    return SA_ERROR(SA_ERR_IO, "cannot write %s", prelude);
+  }
   return 0;
 }
 
@@ -600,6 +649,32 @@ static int extract_mesh(const char *src, FemMesh **out)
   return 0;
 }
 
+/* Curved tet10 elements with det J <= 0 somewhere (a thin part meshed coarsely: a mid-node on a
+ * curved face moves off the chord by the sagitta c^2 / (8 R), which can exceed the thickness)
+ * get straight edges: their mid-nodes go to the edge midpoints, which makes them as valid as
+ * their corner tets. Neighbours share those nodes, so repeat until no element is left. */
+static int straighten_inverted(FemMesh *m)
+{
+  int total = 0;
+  for (int pass = 0; pass < 10; ++pass) {
+    int n = 0;
+    for (int e = 0; e < m->nelem; ++e) {
+      int p;
+      if (elem_min_detJ(m, e, &p) > 0.0) continue;
+      const int *c = m->conn + 10 * (size_t)e;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b)
+          for (int i = 0; i < 3; ++i)
+            m->xyz[3 * (size_t)c[tet_mid[a][b]] + i] =
+                0.5 * (m->xyz[3 * (size_t)c[a] + i] + m->xyz[3 * (size_t)c[b] + i]);
+      ++n;
+    }
+    total += n;
+    if (!n) break;
+  }
+  return total;
+}
+
 static int file_readable(const char *path)
 {
   FILE *f = path ? fopen(path, "r") : NULL;
@@ -614,9 +689,13 @@ static void log_mesh(const FemMesh *m, const char *what, double t0)
   sa_timing_add("mesh", dt);
   int nf = 0;
   for (int s = 0; s < m->nsurfaces; ++s) nf += m->surfaces[s].nfaces;
-  sa_log(SA_LOG_INFO, TAG, "%s %s: %d %s elements, %d nodes, %d regions, %d surfaces (%d faces), %.2f s",
+  double qmin, qmean;
+  fem_mesh_quality(m, -1, &qmin, &qmean);
+  sa_log(SA_LOG_INFO, TAG,
+         "%s %s: %d %s elements, %d nodes, %d regions, %d surfaces (%d faces), radius ratio "
+         "min %.3f mean %.3f, %.2f s",
          what, m->source, m->nelem, m->etype == FEM_TET10 ? "tet10" : "tet4", m->nnodes, m->nregions,
-         m->nsurfaces, nf, dt);
+         m->nsurfaces, nf, qmin, qmean, dt);
 }
 
 /* ---------------------------------------------------------------------------------------------
@@ -635,9 +714,17 @@ int fem_mesh_generate(const char *geo_path, int nparams, const FemGeoParam *para
   SA_REQUIRE(nparams == 0 || params, SA_ERR_INPUT, "%s: parameters missing", geo_path);
   SA_REQUIRE(isfinite(h), SA_ERR_INPUT, "%s: bad mesh size h = %g", geo_path, h);
   double t0 = sa_time_now();
-  SA_CHECK(gmsh_begin(geo_path, nparams, params, h));
-  int ierr = 0, rc = 0;
-  gmshOpen(geo_path, &ierr);
+  char dir[4096], prelude[4200];
+  SA_CHECK(write_prelude(geo_path, nparams, params, h, dir, sizeof dir, prelude, sizeof prelude));
+  int ierr = 0, rc = gmsh_begin(geo_path);
+  if (rc) {
+    remove(prelude);
+    rmdir(dir);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  gmshOpen(prelude, &ierr);
+  remove(prelude);
+  rmdir(dir);
   rc = gmsh_status(ierr, geo_path, "reading the geometry");
   if (!rc) {
     gmshModelMeshGenerate(3, &ierr);
@@ -651,9 +738,20 @@ int fem_mesh_generate(const char *geo_path, int nparams, const FemGeoParam *para
     gmshModelMeshSetOrder(2, &ierr);
     rc = gmsh_status(ierr, geo_path, "second-order elevation");
   }
+  double t1 = sa_time_now();
   if (!rc) rc = extract_mesh(geo_path, out);
   gmsh_end();
+  if (!rc) sa_log(SA_LOG_DEBUG, TAG, "%s: Gmsh %.2f s, extraction %.2f s", geo_path, t1 - t0,
+                  sa_time_now() - t1);
   if (rc) return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  if (order == 2) {
+    int n = straighten_inverted(*out);
+    if (n)
+      sa_log(SA_LOG_WARN, TAG,
+             "%s: %d curved tet10 elements had det J <= 0 and were given straight edges (h too "
+             "coarse for a thin curved part?)",
+             geo_path, n);
+  }
   log_mesh(*out, "generated", t0);
   return 0;
 }
@@ -666,7 +764,7 @@ int fem_mesh_read(const char *msh_path, FemMesh **out)
   SA_REQUIRE(file_readable(msh_path), SA_ERR_INPUT, "mesh file '%s' not found or not readable",
              msh_path);
   double t0 = sa_time_now();
-  SA_CHECK(gmsh_begin(msh_path, 0, NULL, 0.0));
+  SA_CHECK(gmsh_begin(msh_path));
   int ierr = 0;
   gmshOpen(msh_path, &ierr);
   int rc = gmsh_status(ierr, msh_path, "reading the mesh");
@@ -685,42 +783,30 @@ int fem_mesh_check(const FemMesh *m, double rel_tol)
     SA_REQUIRE(m->conn[k] >= 0 && m->conn[k] < m->nnodes, SA_ERR_INPUT,
                "mesh %s: element %zu refers to node %d of %d", m->source, k / (size_t)m->nen,
                m->conn[k], m->nnodes);
-  pthread_once(&q14_once, q14_init);
+  /* size scale: mean |volume| (an inverted element must not spoil the scale) */
   double vmean = 0.0;
-  for (int e = 0; e < m->nelem; ++e) vmean += elem_volume(m, e);
+  for (int e = 0; e < m->nelem; ++e) vmean += fabs(elem_volume(m, e));
   vmean /= m->nelem;
-  SA_REQUIRE(vmean > 0.0, SA_ERR_INPUT, "mesh %s: mean element volume %g <= 0", m->source, vmean);
-  /* det J / 6 is the volume density of the map; compare it with rel_tol times the mean volume.
-   * tet10: corners, the 4-point and the 14-point rule's points (the kernels' rules). */
-  static const double g4a = 0.5854101966249685, g4b = 0.1381966011250105;
-  double pts[4 + 4 + NQ14][4];
-  int np = 0;
-  for (int a = 0; a < 4; ++a, ++np)
-    for (int j = 0; j < 4; ++j) pts[np][j] = (a == j);
-  for (int a = 0; a < 4; ++a, ++np)
-    for (int j = 0; j < 4; ++j) pts[np][j] = (a == j) ? g4a : g4b;
-  for (int q = 0; q < NQ14; ++q, ++np) memcpy(pts[np], q14_L[q], sizeof pts[np]);
-  if (m->nen == 4) np = 1;
-  const double Lc[4] = {0.25, 0.25, 0.25, 0.25};
-  double X[30];
+  SA_REQUIRE(vmean > 0.0, SA_ERR_INPUT, "mesh %s: all elements have zero volume", m->source);
+  /* det J / 6 is the volume density of the map; compare it with rel_tol times the mean volume. */
   for (int e = 0; e < m->nelem; ++e) {
-    elem_coords(m, e, X);
+    int p = 0;
+    double d = elem_min_detJ(m, e, &p);
+    if (d > rel_tol * vmean) continue;
     const char *rname =
         (m->region && m->region_names && m->region[e] >= 0 && m->region[e] < m->nregions)
             ? m->region_names[m->region[e]]
             : "?";
-    double cx = 0, cy = 0, cz = 0;
-    for (int a = 0; a < 4; ++a) cx += 0.25 * X[3 * a], cy += 0.25 * X[3 * a + 1], cz += 0.25 * X[3 * a + 2];
-    for (int p = 0; p < np; ++p) {
-      double d = tet_detJ(m->nen, X, m->nen == 4 ? Lc : pts[p]) / 6.0;
-      if (d <= rel_tol * vmean)
-        return SA_ERROR(SA_ERR_INPUT,
-                        "mesh %s: element %d (region '%s', near (%g, %g, %g)) is %s: det J / 6 = "
-                        "%g at %s %d, mean element volume %g",
-                        m->source, e, rname, cx, cy, cz, d <= 0.0 ? "inverted" : "degenerate", d,
-                        m->nen == 4 ? "centroid" : (p < 4 ? "corner" : "check point"),
-                        m->nen == 4 ? 0 : (p < 4 ? p : p - 4), vmean);
-    }
+    double X[30], c[3] = {0, 0, 0};
+    elem_coords(m, e, X);
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) c[i] += 0.25 * X[3 * a + i];
+    return SA_ERROR(SA_ERR_INPUT,
+                    "mesh %s: element %d (region '%s', near (%g, %g, %g)) is %s: det J / 6 = %g "
+                    "at %s %d, mean element volume %g",
+                    m->source, e, rname, c[0], c[1], c[2], d <= 0.0 ? "inverted" : "degenerate", d,
+                    m->nen == 4 ? "centroid" : (p < 4 ? "corner" : "check point"),
+                    m->nen == 4 ? 0 : (p < 4 ? p : p - 4), vmean);
   }
   return 0;
 }
@@ -787,6 +873,56 @@ double fem_mesh_volume(const FemMesh *m, int region)
   for (int e = 0; e < m->nelem; ++e)
     if (region < 0 || m->region[e] == region) v += elem_volume(m, e);
   return v;
+}
+
+/* Radius ratio of a tet with corners x[12]: r_in = 3 V / sum(face areas), and with edge vectors
+ * a, b, c from corner 0, r_circ = |a^2 (b x c) + b^2 (c x a) + c^2 (a x b)| / (12 V). */
+static double tet_radius_ratio(const double *x)
+{
+  double e[3][3], cr[3][3];
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) e[k][i] = x[3 * (k + 1) + i] - x[i];
+  for (int k = 0; k < 3; ++k) {
+    const double *u = e[(k + 1) % 3], *v = e[(k + 2) % 3];
+    cr[k][0] = u[1] * v[2] - u[2] * v[1];
+    cr[k][1] = u[2] * v[0] - u[0] * v[2];
+    cr[k][2] = u[0] * v[1] - u[1] * v[0];
+  }
+  double V6 = e[0][0] * cr[0][0] + e[0][1] * cr[0][1] + e[0][2] * cr[0][2];
+  if (V6 <= 0.0) return 0.0;
+  double area = 0.0, w[3] = {0, 0, 0};
+  for (int k = 0; k < 3; ++k) {
+    area += 0.5 * sqrt(cr[k][0] * cr[k][0] + cr[k][1] * cr[k][1] + cr[k][2] * cr[k][2]);
+    double l2 = e[k][0] * e[k][0] + e[k][1] * e[k][1] + e[k][2] * e[k][2];
+    for (int i = 0; i < 3; ++i) w[i] += l2 * cr[k][i];
+  }
+  double f[3]; /* face (1, 2, 3) */
+  double p[3], q[3];
+  for (int i = 0; i < 3; ++i) p[i] = e[1][i] - e[0][i], q[i] = e[2][i] - e[0][i];
+  f[0] = p[1] * q[2] - p[2] * q[1];
+  f[1] = p[2] * q[0] - p[0] * q[2];
+  f[2] = p[0] * q[1] - p[1] * q[0];
+  area += 0.5 * sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+  double r_in = 0.5 * V6 / area; /* 3 V / A with V = V6 / 6 */
+  double r_circ = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]) / (2.0 * V6);
+  return 3.0 * r_in / r_circ;
+}
+
+int fem_mesh_quality(const FemMesh *m, int region, double *qmin, double *qmean)
+{
+  double lo = INFINITY, sum = 0.0, X[30];
+  int worst = -1, n = 0;
+  for (int e = 0; m && e < m->nelem; ++e) {
+    if (region >= 0 && m->region[e] != region) continue;
+    elem_coords(m, e, X);
+    double q = tet_radius_ratio(X);
+    sum += q;
+    ++n;
+    if (q < lo) lo = q, worst = e;
+  }
+  if (qmin) *qmin = n ? lo : 0.0;
+  if (qmean) *qmean = n ? sum / n : 0.0;
+  return worst;
 }
 
 void fem_mesh_destroy(FemMesh **pm)

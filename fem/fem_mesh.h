@@ -69,6 +69,10 @@ int fem_mesh_require(const FemMesh *m, int nregions, const char *const *regions,
                      const char *const *surfaces);
 /* Total reference volume of a region (-1 = all). */
 double fem_mesh_volume(const FemMesh *m, int region);
+/* Shape quality of the corner tets of a region (-1 = all): radius ratio 3 r_in / r_circ
+ * (1 for a regular tet, 0 for a flat one); qmin [out] smallest, qmean [out] mean (either may be
+ * NULL). Returns the index of the worst element (-1 if the region is empty). */
+int fem_mesh_quality(const FemMesh *m, int region, double *qmin, double *qmean);
 void fem_mesh_destroy(FemMesh **m);
 
 #endif

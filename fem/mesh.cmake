@@ -7,5 +7,3 @@ add_library(sa_fem_mesh
 target_include_directories(sa_fem_mesh PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 target_include_directories(sa_fem_mesh PRIVATE ${GMSH_INCLUDE_DIR})
 target_link_libraries(sa_fem_mesh PUBLIC sa_core m PRIVATE ${GMSH_LIBRARY} Threads::Threads)
-# Where the .geo sources live, for tests and default case paths.
-set(SOFTACT_MESH_DIR ${CMAKE_SOURCE_DIR}/meshes CACHE INTERNAL "softact .geo sources")

@@ -5,10 +5,12 @@
  *         dense SUNMatrix + SUNLinSol_Dense with the analytic Jacobian
  *   bdf   CVODE BDF (order <= 5), dense linear solver with the analytic Jacobian
  *   auto  start with erk; switch to bdf at the current state when explicit steps collapse:
- *         step h < switch_ratio * T_ref while h is stability-bound (h * r_stiff >= 1, r_stiff the
- *         largest relaxation rate |df_xi/dxi|), or when one advance needs more than
- *         switch_steps steps at h < switch_ratio * T_ref (default 20000). T_ref = forcing period, or 2 pi/omega_u
- *         of the rest state for constant loading.
+ *         50 consecutive steps with h < switch_ratio * T_ref while h is stability-bound
+ *         (h * r_stiff >= 1, r_stiff = -d xi'/d xi the Maxwell relaxation rate), or more than
+ *         switch_steps (20000) steps since reset at h < switch_ratio * T_ref when the model has a
+ *         relaxation mode. T_ref = forcing period, or 2 pi/omega_u of the rest state for
+ *         constant loading. The PC model never switches (no dissipative stiff mode; its small
+ *         steps near the pole are needed for accuracy).
  * One SUNContext per integrator: an integrator must be used by one thread at a time.
  * Output at tout is taken from the integrator's dense output (interpolation), never from the
  * nearest step. The PC pole is a recoverable RHS failure (the step is shrunk); if the
@@ -30,7 +32,7 @@ typedef struct {
   double rtol, atol;
   long max_steps;      /* per advance call (0 = 1e7) */
   double switch_ratio; /* auto: h/T_ref below which explicit steps count as collapsed (1e-3) */
-  long switch_steps;   /* auto: steps per advance at collapsed h that trigger a switch (20000) */
+  long switch_steps;   /* auto: steps since reset at collapsed h that trigger a switch (20000) */
   double h_max;        /* 0 = none; cap on the step (e.g. a fraction of the forcing period) */
 } HmsaIntegratorOptions;
 

@@ -17,7 +17,9 @@
 //
 // Mesh size: h everywhere, h_band in the 0.5 mm band and h_ring in the rings (growing back to h over
 // a distance thin_grow), so the thin parts get enough elements without refining the wall. The
-// 0.5 mm faces of the rings and band force about 0.5 mm elements there whatever h_ring is.
+// 0.5 mm faces of the rings and band force about 0.5 mm elements there whatever h_ring is; h_ring
+// <= 4 ring_h keeps the sagitta of a curved tet10 edge on the outer surface, c^2 / (8 R_out),
+// at a tenth of the ring height (coarser rings gave tet10 elements with det J < 0 at h = 3 mm).
 // Every number below is a parameter: define it before including this file to override.
 
 SetFactory("OpenCASCADE");
@@ -38,7 +40,7 @@ If(!Exists(ring_pitch)) ring_pitch = 5.0e-3; EndIf
 If(!Exists(ring_z0)) ring_z0 = -2.5e-3; EndIf
 If(!Exists(h)) h = 2.0e-3; EndIf
 If(!Exists(h_band)) h_band = Min(h, 2 * (band_r_out - band_r_in)); EndIf
-If(!Exists(h_ring)) h_ring = h; EndIf
+If(!Exists(h_ring)) h_ring = Min(h, 4 * ring_h); EndIf
 If(!Exists(thin_grow)) thin_grow = h; EndIf
 
 eps = 1e-3 * ring_h; // bounding-box tolerance, far below every feature size

@@ -20,12 +20,15 @@
  *   (1e-3 .. 1e-10 by decades), --trans N (140), --meas N (40), --eta E (sweep: 50),
  *   --n N (26), --wlo W (1.5), --whi W (2.75), --ref-rtol R (1e-13), --ref-check 0|1 (1: wp
  *   bounds the reference's error with the 1e-12 runs).
- * Timing: wall clock (sa_time_now), integrator creation included, output excluded. */
+ * Timing: wall clock (sa_time_now) and CPU time of the process (CLOCK_PROCESS_CPUTIME_ID: on a
+ * shared machine it is the robust measure), integrator creation included, output excluded. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
+#include "hmsa_classify.h"
 #include "hmsa_integrate.h"
 #include "hmsa_model.h"
 #include "sa_error.h"
@@ -43,11 +46,25 @@ typedef struct {
   double eta, w_lo, w_hi, ref_rtol;
 } BenchOptions;
 
+#define MAX_POINCARE 256
+
 typedef struct {
   double a3, a, y[HMSA_NEQ_MAX];
+  int n_pc;                          /* Poincare samples (one per period of the measurement) */
+  double pc[MAX_POINCARE * HMSA_NEQ_MAX];
 } Outcome;
 
 static const double PI = 3.14159265358979323846;
+
+static double cpu_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct {
+  double wall, cpu;
+} Timing;
 
 static void model_setup(HmsaModel *m, double eta, double omega) {
   hmsa_model_default(m);
@@ -70,9 +87,14 @@ static int protocol(HmsaIntegrator *it, const HmsaModel *m, int n_trans, int n_m
   double T = 2.0 * PI / m->omega, t0 = n_trans * T;
   SA_CHECK(hmsa_integrator_advance(it, t0, y));
   double lmin = y[0], lmax = y[0];
-  for (int j = 1; j <= n_meas * N_PER; j++) {
-    SA_CHECK(hmsa_integrator_advance(it, t0 + j * (T / N_PER), y));
+  out->n_pc = 0;
+  for (int j = 0; j <= n_meas * N_PER; j++) {
+    if (j > 0) SA_CHECK(hmsa_integrator_advance(it, t0 + j * (T / N_PER), y));
     lmin = fmin(lmin, y[0]), lmax = fmax(lmax, y[0]);
+    if (j % N_PER == 0 && out->n_pc < MAX_POINCARE) {
+      memcpy(out->pc + HMSA_NEQ_MAX * out->n_pc, y, HMSA_NEQ_MAX * sizeof *y);
+      out->n_pc++;
+    }
   }
   /* lambda3 = lambda^-2 is monotone in lambda > 0: its extremes are at lambda's. */
   out->a3 = 0.5 * (1.0 / (lmin * lmin) - 1.0 / (lmax * lmax));
@@ -82,17 +104,18 @@ static int protocol(HmsaIntegrator *it, const HmsaModel *m, int n_trans, int n_m
 }
 
 static int run_once(const HmsaModel *m, HmsaMethod method, double rtol, int n_trans, int n_meas,
-                    Outcome *out, HmsaIntegratorStats *st, double *seconds) {
+                    Outcome *out, HmsaIntegratorStats *st, Timing *tm) {
   HmsaIntegratorOptions o;
   hmsa_integrator_options_default(&o);
   o.method = method;
   o.rtol = rtol;
   o.atol = 1e-2 * rtol;
-  double t = sa_time_now();
+  double t = sa_time_now(), c = cpu_now();
   HmsaIntegrator *it = NULL;
   SA_CHECK(hmsa_integrator_create(m, &o, &it));
   int rc = protocol(it, m, n_trans, n_meas, out);
-  *seconds = sa_time_now() - t;
+  tm->wall = sa_time_now() - t;
+  tm->cpu = cpu_now() - c;
   if (st) hmsa_integrator_get_stats(it, st);
   hmsa_integrator_destroy(&it);
   if (rc) return sa_error_push(rc, __func__, __FILE__, __LINE__);
@@ -118,8 +141,8 @@ static double state_err(const double *y, const double *yref) {
 static int cmd_wp(double eta, double omega, const char *path, const BenchOptions *bo) {
   HmsaModel m;
   model_setup(&m, eta, omega);
-  Outcome ref, chk;
-  double sec;
+  static Outcome ref, chk;
+  Timing sec;
   HmsaIntegratorStats st;
   sa_log(SA_LOG_INFO, "bench", "wp eta %g omega %g: reference erk rtol %g", eta, omega, bo->ref_rtol);
   SA_CHECK(run_once(&m, HMSA_METHOD_ERK, bo->ref_rtol, bo->n_trans, bo->n_meas, &ref, &st, &sec));
@@ -127,7 +150,12 @@ static int cmd_wp(double eta, double omega, const char *path, const BenchOptions
   SA_REQUIRE(f, SA_ERR_IO, "cannot open %s", path);
   fprintf(f, "# hmsa_bench wp: eta_bar %g omega %g, %d + %d periods, atol = 1e-2 rtol\n", eta,
           omega, bo->n_trans, bo->n_meas);
-  fprintf(f, "# reference erk rtol %g: %.3f s, %ld steps\n", bo->ref_rtol, sec, st.steps);
+  fprintf(f, "# reference erk rtol %g: %.3f s, %ld steps\n", bo->ref_rtol, sec.wall, st.steps);
+  HmsaClassifyResult cls;
+  if (ref.n_pc >= 4 && hmsa_poincare_classify(ref.n_pc, HMSA_NEQ_MAX, ref.pc, NAN, NULL, &cls) == 0)
+    fprintf(f, "# reference Poincare section (%d samples): %s, period %d, mismatch %.1e\n", ref.n_pc,
+            hmsa_orbit_kind_name(cls.kind), cls.period, cls.mismatch);
+  sa_error_clear();
   /* Bound on the reference's own error: the same run at 1e-12 with each method. */
   HmsaMethod chk_m[3] = {HMSA_METHOD_ERK, HMSA_METHOD_DIRK, HMSA_METHOD_BDF};
   for (int q = 0; q < (bo->ref_check ? 3 : 0); q++) {
@@ -139,21 +167,24 @@ static int cmd_wp(double eta, double omega, const char *path, const BenchOptions
       continue;
     }
     fprintf(f, "# ref_check %s rtol 1e-12: err_state %.3e err_a3 %.3e (%.3f s, %ld steps)\n",
-            hmsa_method_name(chk_m[q]), state_err(chk.y, ref.y), fabs(chk.a3 - ref.a3), sec,
+            hmsa_method_name(chk_m[q]), state_err(chk.y, ref.y), fabs(chk.a3 - ref.a3), sec.wall,
             st.steps);
   }
   fprintf(f, "method,eta,omega,rtol,atol,seconds,seconds_min,seconds_max,reps,steps,attempts,"
-             "err_fails,conv_fails,rhs_evals,jac_evals,a3,a,lambda,dlambda,xi,err_state,err_a3\n");
-  fprintf(f, "reference,%.17g,%.17g,%.3g,%.3g,,,,,,,,,,,%.17g,%.17g,%.17g,%.17g,%.17g,0,0\n", eta,
+             "err_fails,conv_fails,rhs_evals,jac_evals,a3,a,lambda,dlambda,xi,err_state,err_a3,cpu,"
+             "cpu_min,cpu_max\n");
+  fprintf(f, "reference,%.17g,%.17g,%.3g,%.3g,,,,,,,,,,,%.17g,%.17g,%.17g,%.17g,%.17g,0,0,,,\n", eta,
           omega, bo->ref_rtol, 1e-2 * bo->ref_rtol, ref.a3, ref.a, ref.y[0], ref.y[1], ref.y[2]);
   fflush(f);
   for (int q = 0; q < bo->n_methods; q++)
     for (int r = 0; r < bo->n_rtols; r++) {
-      double t[MAX_LIST];
-      Outcome out;
+      double t[MAX_LIST], c[MAX_LIST];
+      static Outcome out;
       int rc = 0;
-      for (int k = 0; k < bo->reps && !rc; k++)
-        rc = run_once(&m, bo->methods[q], bo->rtols[r], bo->n_trans, bo->n_meas, &out, &st, &t[k]);
+      for (int k = 0; k < bo->reps && !rc; k++) {
+        rc = run_once(&m, bo->methods[q], bo->rtols[r], bo->n_trans, bo->n_meas, &out, &st, &sec);
+        t[k] = sec.wall, c[k] = sec.cpu;
+      }
       if (rc) {
         sa_log(SA_LOG_WARN, "bench", "%s rtol %g failed: %s", hmsa_method_name(bo->methods[q]),
                bo->rtols[r], sa_error_message());
@@ -162,27 +193,80 @@ static int cmd_wp(double eta, double omega, const char *path, const BenchOptions
         sa_error_clear();
         continue;
       }
-      double tmin = t[0], tmax = t[0];
-      for (int k = 1; k < bo->reps; k++) tmin = fmin(tmin, t[k]), tmax = fmax(tmax, t[k]);
-      double tmed = median(t, bo->reps);
+      double tmin = t[0], tmax = t[0], cmin = c[0], cmax = c[0];
+      for (int k = 1; k < bo->reps; k++) {
+        tmin = fmin(tmin, t[k]), tmax = fmax(tmax, t[k]);
+        cmin = fmin(cmin, c[k]), cmax = fmax(cmax, c[k]);
+      }
+      double tmed = median(t, bo->reps), cmed = median(c, bo->reps);
       fprintf(f, "%s,%.17g,%.17g,%.3g,%.3g,%.6f,%.6f,%.6f,%d,%ld,%ld,%ld,%ld,%ld,%ld,%.17g,%.17g,"
-                 "%.17g,%.17g,%.17g,%.3e,%.3e\n",
+                 "%.17g,%.17g,%.17g,%.3e,%.3e,%.6f,%.6f,%.6f\n",
               hmsa_method_name(bo->methods[q]), eta, omega, bo->rtols[r], 1e-2 * bo->rtols[r], tmed,
               tmin, tmax, bo->reps, st.steps, st.attempts, st.err_fails, st.conv_fails,
               st.rhs_evals, st.jac_evals, out.a3, out.a, out.y[0], out.y[1], out.y[2],
-              state_err(out.y, ref.y), fabs(out.a3 - ref.a3));
+              state_err(out.y, ref.y), fabs(out.a3 - ref.a3), cmed, cmin, cmax);
       fflush(f);
-      sa_log(SA_LOG_INFO, "bench", "%-4s rtol %.0e: %.4f s, %ld steps, err_state %.2e, err_a3 %.2e",
-             hmsa_method_name(bo->methods[q]), bo->rtols[r], tmed, st.steps,
+      sa_log(SA_LOG_INFO, "bench", "%-4s rtol %.0e: %.4f s (cpu %.4f), %ld steps, err_state %.2e, "
+             "err_a3 %.2e", hmsa_method_name(bo->methods[q]), bo->rtols[r], tmed, cmed, st.steps,
              state_err(out.y, ref.y), fabs(out.a3 - ref.a3));
     }
   fclose(f);
   return 0;
 }
 
+typedef struct {
+  HmsaModel *m;
+  HmsaIntegrator *it;
+  const BenchOptions *bo;
+} PeakCtx;
+
+static int peak_amp(double omega, double *amp, void *ctx) {
+  PeakCtx *pc = ctx;
+  pc->m->omega = omega;
+  Outcome out;
+  SA_CHECK(protocol(pc->it, pc->m, pc->bo->n_trans, pc->bo->n_meas, &out));
+  *amp = out.a3;
+  return 0;
+}
+
+/* Peaks of the reference sweep, refined by golden-section search with ERK at rtol 1e-10
+ * (error in a3 ~1e-10, far below the golden bracket's effect), labelled against the highest. */
+static int sweep_peaks(const BenchOptions *bo, const double *ref, FILE *f) {
+  int n = bo->n_omega;
+  if (n < 3) return 0;
+  double *w = calloc((size_t)n, sizeof *w);
+  if (!w) return SA_ERROR(SA_ERR_MEMORY, "cannot allocate %d frequencies", n);
+  for (int i = 0; i < n; i++) w[i] = bo->w_lo + (bo->w_hi - bo->w_lo) * i / (n - 1);
+  HmsaModel m;
+  model_setup(&m, bo->eta, bo->w_lo);
+  HmsaIntegratorOptions o;
+  hmsa_integrator_options_default(&o);
+  o.method = HMSA_METHOD_ERK;
+  o.rtol = 1e-10;
+  o.atol = 1e-12;
+  HmsaIntegrator *it = NULL;
+  int rc = hmsa_integrator_create(&m, &o, &it);
+  HmsaPeak pk[8];
+  int np = 0;
+  if (!rc) {
+    PeakCtx ctx = {&m, it, bo};
+    rc = hmsa_peaks_find(n, w, ref, NULL, peak_amp, &ctx, 0.0, 8, pk, &np);
+  }
+  hmsa_integrator_destroy(&it);
+  free(w);
+  if (rc) return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  for (int q = 0; q < np; q++)
+    fprintf(f, "# peak omega_grid %.4f a3_grid %.6f -> omega %.5f a3 %.8f (%s, %d evaluations, %s "
+               "order %d, prominence %.2e)\n",
+            pk[q].omega_grid, pk[q].amp_grid, pk[q].omega, pk[q].amp,
+            pk[q].refined ? "refined" : "not refined", pk[q].n_evals,
+            hmsa_peak_kind_name(pk[q].kind), pk[q].order, pk[q].prominence);
+  return 0;
+}
+
 /* The whole sweep with one integrator (omega changed between resets); a3[i] [out]. */
 static int sweep_once(HmsaMethod method, double rtol, const BenchOptions *bo, double *a3,
-                      double *seconds, long *steps) {
+                      Timing *tm, long *steps) {
   HmsaModel m;
   model_setup(&m, bo->eta, bo->w_lo);
   HmsaIntegratorOptions o;
@@ -190,17 +274,18 @@ static int sweep_once(HmsaMethod method, double rtol, const BenchOptions *bo, do
   o.method = method;
   o.rtol = rtol;
   o.atol = 1e-2 * rtol;
-  double t = sa_time_now();
+  double t = sa_time_now(), c = cpu_now();
   HmsaIntegrator *it = NULL;
   SA_CHECK(hmsa_integrator_create(&m, &o, &it));
   int rc = 0;
+  static Outcome out;
   for (int i = 0; i < bo->n_omega && !rc; i++) {
     m.omega = bo->n_omega > 1 ? bo->w_lo + (bo->w_hi - bo->w_lo) * i / (bo->n_omega - 1) : bo->w_lo;
-    Outcome out;
     rc = protocol(it, &m, bo->n_trans, bo->n_meas, &out);
     a3[i] = out.a3;
   }
-  *seconds = sa_time_now() - t;
+  tm->wall = sa_time_now() - t;
+  tm->cpu = cpu_now() - c;
   HmsaIntegratorStats st;
   hmsa_integrator_get_stats(it, &st);
   *steps = st.steps;
@@ -216,7 +301,7 @@ static int cmd_sweep(const char *path, const BenchOptions *bo) {
     free(ref), free(a3);
     return SA_ERROR(SA_ERR_MEMORY, "cannot allocate %d amplitudes", n);
   }
-  double sec;
+  Timing sec;
   long steps;
   sa_log(SA_LOG_INFO, "bench", "sweep: reference erk rtol %g", bo->ref_rtol);
   int rc = sweep_once(HMSA_METHOD_ERK, bo->ref_rtol, bo, ref, &sec, &steps);
@@ -231,20 +316,29 @@ static int cmd_sweep(const char *path, const BenchOptions *bo) {
     if (rc) return sa_error_push(rc, __func__, __FILE__, __LINE__);
     return SA_ERROR(SA_ERR_IO, "cannot open %s or %s", path, rpath);
   }
-  fprintf(fr, "# reference sweep: erk rtol %g, %.3f s, %ld steps\nomega,a3\n", bo->ref_rtol, sec,
-          steps);
+  fprintf(fr, "# reference sweep: erk rtol %g, %.3f s, %ld steps\nomega,a3\n", bo->ref_rtol,
+          sec.wall, steps);
   for (int i = 0; i < n; i++)
     fprintf(fr, "%.17g,%.17g\n",
             n > 1 ? bo->w_lo + (bo->w_hi - bo->w_lo) * i / (n - 1) : bo->w_lo, ref[i]);
+  rc = sweep_peaks(bo, ref, fr);
   fclose(fr);
+  if (rc) {
+    fclose(f);
+    free(ref), free(a3);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
   fprintf(f, "# hmsa_bench sweep: eta_bar %g, %d frequencies on [%g, %g], %d + %d periods each\n",
           bo->eta, n, bo->w_lo, bo->w_hi, bo->n_trans, bo->n_meas);
-  fprintf(f, "method,rtol,atol,seconds,seconds_min,seconds_max,reps,steps,err_a3_max\n");
+  fprintf(f, "method,rtol,atol,seconds,seconds_min,seconds_max,reps,steps,err_a3_max,cpu,cpu_min,"
+             "cpu_max\n");
   for (int q = 0; q < bo->n_methods; q++)
     for (int r = 0; r < bo->n_rtols; r++) {
-      double t[MAX_LIST];
-      for (int k = 0; k < bo->reps && !rc; k++)
-        rc = sweep_once(bo->methods[q], bo->rtols[r], bo, a3, &t[k], &steps);
+      double t[MAX_LIST], c[MAX_LIST];
+      for (int k = 0; k < bo->reps && !rc; k++) {
+        rc = sweep_once(bo->methods[q], bo->rtols[r], bo, a3, &sec, &steps);
+        t[k] = sec.wall, c[k] = sec.cpu;
+      }
       if (rc) {
         fprintf(f, "# %s rtol %g failed: %s\n", hmsa_method_name(bo->methods[q]), bo->rtols[r],
                 sa_error_message());
@@ -254,14 +348,18 @@ static int cmd_sweep(const char *path, const BenchOptions *bo) {
       }
       double err = 0;
       for (int i = 0; i < n; i++) err = fmax(err, fabs(a3[i] - ref[i]));
-      double tmin = t[0], tmax = t[0];
-      for (int k = 1; k < bo->reps; k++) tmin = fmin(tmin, t[k]), tmax = fmax(tmax, t[k]);
-      double tmed = median(t, bo->reps);
-      fprintf(f, "%s,%.3g,%.3g,%.6f,%.6f,%.6f,%d,%ld,%.3e\n", hmsa_method_name(bo->methods[q]),
-              bo->rtols[r], 1e-2 * bo->rtols[r], tmed, tmin, tmax, bo->reps, steps, err);
+      double tmin = t[0], tmax = t[0], cmin = c[0], cmax = c[0];
+      for (int k = 1; k < bo->reps; k++) {
+        tmin = fmin(tmin, t[k]), tmax = fmax(tmax, t[k]);
+        cmin = fmin(cmin, c[k]), cmax = fmax(cmax, c[k]);
+      }
+      double tmed = median(t, bo->reps), cmed = median(c, bo->reps);
+      fprintf(f, "%s,%.3g,%.3g,%.6f,%.6f,%.6f,%d,%ld,%.3e,%.6f,%.6f,%.6f\n",
+              hmsa_method_name(bo->methods[q]), bo->rtols[r], 1e-2 * bo->rtols[r], tmed, tmin, tmax,
+              bo->reps, steps, err, cmed, cmin, cmax);
       fflush(f);
-      sa_log(SA_LOG_INFO, "bench", "sweep %-4s rtol %.0e: %.4f s, err_a3_max %.2e",
-             hmsa_method_name(bo->methods[q]), bo->rtols[r], tmed, err);
+      sa_log(SA_LOG_INFO, "bench", "sweep %-4s rtol %.0e: %.4f s (cpu %.4f), err_a3_max %.2e",
+             hmsa_method_name(bo->methods[q]), bo->rtols[r], tmed, cmed, err);
     }
   fclose(f);
   free(ref), free(a3);

@@ -98,10 +98,10 @@ run_octave() {
     "$pre octave_wp('$RES/octave_wp_stiff_ode45_2periods.csv', 'ode45', 1e-3, 2.13, [1e-6], 1, 1)"
   log "Octave sweep: ode45 rtol 1e-8 ($NOMEGA frequencies; minutes)"
   walltime octave_sweep_ode45_1e-8 "${oct[@]}" \
-    "$pre octave_sweep('$RES/octave_sweep_ode45_1e-8.csv', 'ode45', 1e-8, 50, $NOMEGA, 1.5, 2.75)"
+    "$pre octave_sweep('$RES/octave_sweep_ode45_1e-8.csv', 'ode45', 1e-8, 50, $NOMEGA, 1.5, 2.75, $OPER)"
   log "Octave sweep: ode45 rtol 1e-6"
   walltime octave_sweep_ode45_1e-6 "${oct[@]}" \
-    "$pre octave_sweep('$RES/octave_sweep_ode45_1e-6.csv', 'ode45', 1e-6, 50, $NOMEGA, 1.5, 2.75)"
+    "$pre octave_sweep('$RES/octave_sweep_ode45_1e-6.csv', 'ode45', 1e-6, 50, $NOMEGA, 1.5, 2.75, $OPER)"
 }
 
 report() {
@@ -114,6 +114,7 @@ report() {
     echo "loadavg=$(cut -d' ' -f1-3 /proc/loadavg)"
     echo "sundials=$(dpkg-query -W -f='${Version}' libsundials-dev 2>/dev/null || echo unknown)"
     echo "quick=${QUICK:-0}"
+    echo "reps=$REPS"
   } >"$RES/meta.txt"
   python3 "$HERE/analyse.py" "$RES" "$ROOT/docs"
 }

@@ -26,6 +26,9 @@
 
 #define MAX_OPTS 32
 
+/* ccx_sig.c: the mesh signature ccx_ours prints too. */
+double ccx_mesh_signature(const FemMesh *m);
+
 typedef struct {
   const char *geo, *out, *fix, *load, *tip;
   double h;
@@ -264,8 +267,9 @@ static int run(int argc, char **argv)
   int rc = build(&o, mesh, &m);
   if (!rc) rc = ccx_model_write(&m, o.out);
   if (!rc)
-    printf("ccx_export: %s.inp: %d nodes (%d dof), %d C3D10, %d pressure faces, kappa %.6g Pa\n",
-           o.out, m.nnodes, 3 * m.nnodes, m.nelem, m.nload, m.kappa);
+    printf("ccx_export: %s.inp: %d nodes (%d dof), %d C3D10, %d pressure faces, kappa %.6g Pa, "
+           "sig %.12e\n", o.out, m.nnodes, 3 * m.nnodes, m.nelem, m.nload, m.kappa,
+           ccx_mesh_signature(mesh));
   ccx_model_free(&m);
   fem_mesh_destroy(&mesh);
   return rc;

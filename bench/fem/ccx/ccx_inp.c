@@ -57,9 +57,11 @@ static int write_inp(const CcxModel *m, FILE *f)
   fprintf(f, "** softact CalculiX peer deck (bench/fem/ccx). SI units: m, Pa.\n");
   fprintf(f, "** %d nodes, %d %s elements, %d pressure faces, pressure %.9g Pa\n", m->nnodes,
           m->nelem, m->etype, m->nload, m->pressure);
+  /* ccx reads each number from at most 20 characters (Fortran f20.0 on textpart(1:20)): a
+   * longer field is cut, so "-8.22540040968911e-05" would become -8.2. %.12e is <= 19. */
   fprintf(f, "*NODE, NSET=NALL\n");
   for (int i = 0; i < m->nnodes; ++i)
-    fprintf(f, "%d, %.15g, %.15g, %.15g\n", i + 1, m->xyz[3 * i], m->xyz[3 * i + 1],
+    fprintf(f, "%d, %.12e, %.12e, %.12e\n", i + 1, m->xyz[3 * i], m->xyz[3 * i + 1],
             m->xyz[3 * i + 2]);
   /* Elements grouped by region: one *ELEMENT block (and ELSET) per region. */
   for (int r = 0; r < m->nregions; ++r) {

@@ -2,7 +2,9 @@
  * fe = dPi/du (FD of the element energy) and Ke = dfe/du (FD of fe), with random distorted
  * geometry (straight-sided tet10: 4-point rule; curved tet10: 14-point rule) and random
  * displacements (det F ~ 0.8..1.3), for each law and for K/mu = 1000 (near-incompressible, where
- * the volumetric term dominates K by 1000x: the tolerance is relative to the largest entry).
+ * the volumetric term dominates K by 1000x: the tolerance is relative to the largest entry), with
+ * the default fluctuation modulus kappa_s = 4 mu0, kappa_s = kappa (K/mu = 3 and the stiff law:
+ * displacement element), kappa_s = 0 (pure mean dilatation) and kappa_s = 50 mu0.
  * Central differences with h = 1e-6 (element size 1): truncation ~h^2 |Pi'''| and round-off
  * ~eps |f| / h, both < 1e-8 of the largest entry; rtol 1e-6 leaves margin. Also checked: Ke
  * symmetric, rigid-body invariance (fe sums to zero, Ke annihilates translations), the
@@ -97,11 +99,14 @@ int main(void)
       {.kind = FEM_MAT_NEOHOOKE, .c10 = mu / 2, .kappa = 3 * mu},
       {.kind = FEM_MAT_MOONEY_RIVLIN, .c10 = 0.3, .c01 = 0.2, .kappa = 1000 * mu},
       {.kind = FEM_MAT_YEOH, .c10 = 0.11, .c20 = 0.02, .c30 = 0.001, .kappa = 1000 * 0.22},
-      fem_material_from_e_nu(2.6, 0.3, 1)};
+      fem_material_from_e_nu(2.6, 0.3, 1),
+      {.kind = FEM_MAT_YEOH, .c10 = 0.11, .c20 = 0.02, .c30 = 0.001, .kappa = 220, .mix_alpha = -1},
+      {.kind = FEM_MAT_YEOH, .c10 = 0.11, .c20 = 0.02, .c30 = 0.001, .kappa = 220, .mix_alpha = 50}};
   const char *names[] = {"neo-Hooke K/mu=1000", "neo-Hooke K/mu=3", "Mooney-Rivlin K/mu=1000",
-                         "Yeoh K/mu=1000", "stiff E,nu"};
+                         "Yeoh K/mu=1000", "stiff E,nu", "Yeoh K/mu=1000 pure mean dilatation",
+                         "Yeoh K/mu=1000 mix_alpha=50"};
   char name[120];
-  for (int l = 0; l < 5; l++) {
+  for (int l = 0; l < 7; l++) {
     snprintf(name, sizeof name, "tet4 %s", names[l]);
     check(name, FEM_TET4, 0, &laws[l]);
     snprintf(name, sizeof name, "tet10 straight %s", names[l]);

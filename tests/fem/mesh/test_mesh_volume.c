@@ -6,7 +6,7 @@
  *  - surface areas against the analytic areas (tet10, 1e-4);
  *  - outward orientation: (a) for each face the opposite vertex of its element lies on the inner
  *    side; (b) over the whole boundary (the union of surfaces that close the solid) the area
- *    vector int n da sums to 0 and -(1/3) int x.n da equals the mesh volume (divergence theorem,
+ *    vector int n da sums to 0 and (1/3) int x.n da equals the mesh volume (divergence theorem,
  *    exact on the mesh's own polynomial geometry, so 1e-10);
  *  - the actuator's cavity_wall, closed by the plane z = 0 through the origin, encloses the
  *    cavity volume pi R_cav^2 L_cav;
@@ -88,8 +88,9 @@ static int check_closed(const FemMesh *m, const char *label, int n, const char *
     snprintf(l, sizeof l, "%s: closed boundary area vector [%d]", label, k);
     ok &= mt_close(l, a[k], 0.0, 1e-10 * area, 0.0);
   }
-  snprintf(l, sizeof l, "%s: -(1/3) int x.n da vs mesh volume", label);
-  ok &= mt_close(l, vol, fem_mesh_volume(m, -1), 0.0, 1e-10);
+  /* n points out of the solid, so -(1/3) int x.n da = -V */
+  snprintf(l, sizeof l, "%s: -(1/3) int x.n da vs -(mesh volume)", label);
+  ok &= mt_close(l, vol, -fem_mesh_volume(m, -1), 0.0, 1e-10);
   return !ok;
 }
 

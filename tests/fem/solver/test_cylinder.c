@@ -48,6 +48,7 @@ int main(int argc, char **argv) {
   const double mu = 1.0;
   FemMaterial mat = {.kind = FEM_MAT_NEOHOOKE, .c10 = mu / 2, .kappa = 2000 * mu, .rho = 1.0};
   FemSolverParams prm = fem_solver_params_default();
+  if (getenv("SA_TEST_NOLS")) prm.line_search = 0;
   FemSolver *s;
   TU_CHECK(fem_solver_create(m, &mat, &prm, &s));
   TU_CHECK(fem_solver_fix_surface(s, "sym_y", FEM_Y));
@@ -59,6 +60,15 @@ int main(int argc, char **argv) {
   TU_CHECK(fem_solver_setup(s));
   const FemSurface *in = fem_mesh_find_surface(m, "inner");
   int fails = 0;
+  if (getenv("SA_TEST_DEBUG")) {
+    double err;
+    TU_CHECK(fem_solver_check_tangent(s, 1e-6, &err));
+    printf("tangent check at u=0: %g\n", err);
+    TU_CHECK(fem_solver_set_pressure(s, 0.01));
+    TU_CHECK(fem_solver_solve(s));
+    TU_CHECK(fem_solver_check_tangent(s, 1e-6, &err));
+    printf("tangent check at p=0.01: %g\n", err);
+  }
   double las[] = {1.1, 1.3, 1.6, 2.0}; /* target stretches; the pressure is set from them */
   for (int k = 0; k < 4; k++) {
     double p = p_exact(las[k], mu);
@@ -78,6 +88,11 @@ int main(int argc, char **argv) {
     if (getenv("SA_TEST_VERBOSE"))
       printf("lambda_a %.6f  p_fem %.6f  p_exact %.6f  rel.err %.2e\n", la, p, pe,
              (p - pe) / pe);
+  }
+  if (getenv("SA_TEST_DEBUG")) {
+    double err;
+    TU_CHECK(fem_solver_check_tangent(s, 1e-6, &err));
+    printf("tangent check at the end: %g\n", err);
   }
   fem_solver_destroy(&s);
   smesh_free(&m);
