@@ -13,7 +13,7 @@
  * The B^T A B product is done per node a as T = G_a . A (3x9) then T . G_b, only for b >= a when
  * the law is symmetric.
  *
- * Quadrature: tet4 1 point; tet10 4 points (degree 2) when straight-sided, 14 points (degree 5)
+ * Quadrature: tet4 1 point; tet10 4 points (degree 2) when straight-sided, 8 points (degree 3)
  * when curved, see fem_kernel_quad.h for why.
  *
  * Faces: x(r, s) = sum N_a x_a, t1 = x,r, t2 = x,s, n da = t1 x t2 dr ds, and
@@ -30,16 +30,17 @@
 static const FemKqRule *tet_rule(FemElemType t, const double *X)
 {
   if (t == FEM_TET4) return &fem_kq_tet1;
-  return fem_kq_tet10_curved(X) ? &fem_kq_tet14 : &fem_kq_tet4;
+  return fem_kq_tet10_curved(X) ? &fem_kq_tet8 : &fem_kq_tet4;
 }
 
-int fem_element_nqp(FemElemType t) { return t == FEM_TET4 ? 1 : FEM_KQ_MAX_QP; }
+int fem_element_nqp(FemElemType t) { return t == FEM_TET4 ? 1 : 8; }
 
 int fem_element_nqp_used(FemElemType t, const double *X) { return tet_rule(t, X)->n; }
 
-/* Reference gradients G [out] and weight w [out] (rule weight x det dX/dxi) at point L. */
-static int tet_geom(int nen, const double *X, const double L[4], double wref, double G[][3],
-                    double *w)
+/* Reference gradients G [out] and weight w [out] (rule weight x det dX/dxi) at point L.
+ * Returns det dX/dxi; G and w are valid only when it is > 0. */
+static double tet_geom(int nen, const double *X, const double L[4], double wref, double G[][3],
+                       double *w)
 {
   double dN[10][3], J0[9] = {0}, iJ0[9];
   fem_kq_tet_shape(nen, L, NULL, dN);
@@ -47,13 +48,19 @@ static int tet_geom(int nen, const double *X, const double L[4], double wref, do
     for (int i = 0; i < 3; i++)
       for (int k = 0; k < 3; k++) J0[3 * i + k] += X[3 * a + i] * dN[a][k];
   double d = fem_kt_inv(J0, iJ0);
-  if (!(d > 0)) return SA_ERROR(SA_ERR_INPUT, "degenerate or inverted reference element (det J = %g)", d);
+  if (!(d > 0)) return d;
   for (int a = 0; a < nen; a++)
     for (int J = 0; J < 3; J++)
       G[a][J] = dN[a][0] * iJ0[J] + dN[a][1] * iJ0[3 + J] + dN[a][2] * iJ0[6 + J];
   *w = wref * d;
-  return 0;
+  return d;
 }
+
+#define TET_GEOM(nen, X, L, wref, G, w)                                                          \
+  do {                                                                                         \
+    double d_ = tet_geom(nen, X, L, wref, G, w);                                               \
+    SA_REQUIRE(d_ > 0, SA_ERR_INPUT, "degenerate or inverted reference element (det J = %g)", d_); \
+  } while (0)
 
 static void def_grad(int nen, const double *x, const double G[][3], double F[9])
 {
@@ -76,7 +83,7 @@ int fem_element_tl(FemElemType t, const double *X, const double *x, const FemMat
   double G[FEM_KQ_MAX_QP][10][3], wq[FEM_KQ_MAX_QP], Fq[FEM_KQ_MAX_QP][9], Jq[FEM_KQ_MAX_QP];
   double V = 0, v = 0, minJ = INFINITY;
   for (int q = 0; q < nq; q++) {
-    SA_CHECK(tet_geom(nen, X, R->L[q], R->w[q], G[q], &wq[q]));
+    TET_GEOM(nen, X, R->L[q], R->w[q], G[q], &wq[q]);
     def_grad(nen, x, (const double(*)[3])G[q], Fq[q]);
     Jq[q] = fem_kt_det(Fq[q]);
     if (Jq[q] < minJ) minJ = Jq[q];
@@ -171,7 +178,7 @@ int fem_element_stress(FemElemType t, const double *X, const double *x, const Fe
   double G[FEM_KQ_MAX_QP][10][3], wq[FEM_KQ_MAX_QP], Fq[FEM_KQ_MAX_QP][9], Jq[FEM_KQ_MAX_QP];
   double V = 0, v = 0, Fa[9] = {0}, scratch[FEM_MAT_MAX_HIST];
   for (int q = 0; q < R->n; q++) {
-    SA_CHECK(tet_geom(nen, X, R->L[q], R->w[q], G[q], &wq[q]));
+    TET_GEOM(nen, X, R->L[q], R->w[q], G[q], &wq[q]);
     def_grad(nen, x, (const double(*)[3])G[q], Fq[q]);
     Jq[q] = fem_kt_det(Fq[q]);
     SA_REQUIRE(Jq[q] > 0, SA_ERR_INVERTED, "inverted element: det F = %g", Jq[q]);
@@ -222,9 +229,8 @@ void fem_element_lumped_mass(FemElemType t, const double *X, double rho, double 
   double diag[10] = {0}, V = 0, sd = 0;
   for (int q = 0; q < R->n; q++) {
     double G[10][3], w, N[10];
-    if (tet_geom(nen, X, R->L[q], R->w[q], G, &w)) {
-      sa_error_clear(); /* degenerate element: report zero mass, fem_mesh_check catches it */
-      for (int a = 0; a < nen; a++) m[a] = 0;
+    if (!(tet_geom(nen, X, R->L[q], R->w[q], G, &w) > 0)) {
+      for (int a = 0; a < nen; a++) m[a] = 0; /* degenerate: fem_mesh_check reports it */
       return;
     }
     fem_kq_tet_shape(nen, R->L[q], N, NULL);

@@ -11,13 +11,13 @@
  * (fem_material.h; default mix_alpha = 4). Why kappa_s: with kappa_s = 0 (plain P2-P0) every
  * tet10 has three zero-energy modes (u = 2 (a.X) X - |X|^2 a: no deviatoric strain, zero mean
  * dilatation) that a mesh with one or two elements through a wall restrains only weakly: a
- * one-layer cantilever came out 44 % (K/mu = 1000) to 58 % (nu = 0.3) too soft; with
- * kappa_s = 4 mu0 it is within 2.5 % of the converged answer, and K/mu = 1000 still does not lock
+ * one-layer cantilever came out 47 % (K/mu = 1000) to 59 % (nu = 0.3) too soft; with
+ * kappa_s = 4 mu0 it is within 1.7 % of the converged answer, and K/mu = 1e4 still does not lock
  * (tests/fem/kernels/test_fem_locking.c). Because U(J) = (kappa/2)(J - 1)^2 is quadratic,
  * kappa_s = kappa gives exactly the displacement element: compressible laws (the stiff parts,
  * kappa = 2.2 mu) get it automatically.
  * Quadrature: tet4 1 point; straight-sided tet10 4 points (degree 2); curved tet10 (a mid-node
- * off its edge midpoint) 14 points (degree 5), because grad N det J0 is then cubic and the
+ * off its edge midpoint) 8 points (degree 3), because grad N det J0 is then cubic and the
  * 4-point rule would fail the patch test (see fem_kernel_quad.h).
  *
  * Surface elements (tri3/tri6 faces, normal out of the solid): follower pressure and the
@@ -38,14 +38,17 @@ typedef struct {
 } FemElemOut;
 
 /* X [in] 3*nen reference coordinates, x [in] 3*nen current coordinates. hist_old [in],
- * hist_new [out]: nqp * mat->nhist (NULL if nhist == 0). Returns SA_ERR_INVERTED (> 0) when
- * det F <= 0 at a quadrature point or theta <= 0. */
+ * hist_new [out]: fem_element_nqp(t) * mat->nhist per element, quadrature point q at
+ * q * nhist (NULL if nhist == 0). out [out]: energy, fe, theta, min_detF always, Ke if want_K
+ * (for a law whose fem_material_symmetric() is 0 every block is computed, not mirrored).
+ * Returns SA_ERR_INVERTED (> 0) when det F <= 0 at a quadrature point or theta <= 0,
+ * SA_ERR_INPUT for a degenerate reference element. Thread-safe, allocation-free. */
 int fem_element_tl(FemElemType t, const double *X, const double *x, const FemMaterial *mat,
                    const double *hist_old, double *hist_new, int want_K, FemElemOut *out);
 /* Quadrature points per element to allocate history for (the stride of hist_old/hist_new per
- * element): 1 for tet4, 14 for tet10 (straight-sided tet10 use only the first 4). */
+ * element): 1 for tet4, 8 for tet10 (straight-sided tet10 use only the first 4). */
 int fem_element_nqp(FemElemType t);
-/* Quadrature points an element with reference coordinates X [in] actually uses (1, 4 or 14). */
+/* Quadrature points an element with reference coordinates X [in] actually uses (1, 4 or 8). */
 int fem_element_nqp_used(FemElemType t, const double *X);
 
 /* Element-averaged Cauchy stress sigma [out] 9 (current-volume average, (1/v) int sigma dv,
@@ -55,7 +58,7 @@ int fem_element_nqp_used(FemElemType t, const double *X);
 int fem_element_stress(FemElemType t, const double *X, const double *x, const FemMaterial *mat,
                        const double *hist, double sigma[9], double lam[3]);
 
-/* Lumped mass per node [out] nen: tet4 rho V/4; tet10 HRZ (consistent-mass diagonal scaled to
+/* Lumped mass per node [out] nen (zeros for a degenerate element): tet4 rho V/4; tet10 HRZ (consistent-mass diagonal scaled to
  * the element mass; straight tet10: rho V/36 per corner, 4 rho V/27 per mid-node; all positive,
  * unlike the row sum, which is negative at the corners). */
 void fem_element_lumped_mass(FemElemType t, const double *X, double rho, double *m);

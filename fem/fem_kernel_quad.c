@@ -15,6 +15,17 @@ const FemKqRule fem_kq_tet1 = {1, {{0.25, 0.25, 0.25, 0.25}}, {1.0 / 6.0}};
 #define T4A 0.1381966011250105151795 /* (5 - sqrt 5) / 20 */
 const FemKqRule fem_kq_tet4 = {4, {TET_S31(T4A, 0)}, {1.0 / 24, 1.0 / 24, 1.0 / 24, 1.0 / 24}};
 
+/* Degree 3, 8 points, positive weights: two S31 orbits (a, a, a, 1 - 3a). Fully symmetric
+ * rules need exactness only on the symmetric polynomials 1, sum L_i^2, sum L_i^3, which gives a
+ * one-parameter family; this member has a = 1/10 (b and the weights solved to 25 digits). */
+#define T8A 0.1
+#define T8B 0.3276485088606362762869967
+#define T8WA (0.09821539928159403844322218 / 6)
+#define T8WB (0.1517846007184059615567778 / 6)
+const FemKqRule fem_kq_tet8 = {8,
+                               {TET_S31(T8A, 0), TET_S31(T8B, 0)},
+                               {T8WA, T8WA, T8WA, T8WA, T8WB, T8WB, T8WB, T8WB}};
+
 /* Walkington, "Quadrature on simplices of arbitrary dimension" (2014), 14 points, degree 5. */
 #define T14A 0.0927352503108912
 #define T14B 0.3108859192633006

@@ -12,9 +12,12 @@
  *    exact there; the deviatoric strain (linear in X) is fixed by its values at 4 points, so the
  *    rule has exactly the rank of exact integration (no extra zero-energy modes), and
  *    int grad N dV is exact (patch test passed).
- *  - tet 14-point (degree 5, positive weights; Walkington 2014): curved tet10 (mid-nodes off the
- *    edge midpoints) where grad N det J0 is cubic, so the patch test needs degree >= 3, and for
- *    the consistent mass diagonal (degree 4) of the HRZ lumping.
+ *  - tet 8-point (degree 3, positive weights, derived in fem_kernel_quad.c): curved tet10
+ *    (mid-nodes off the edge midpoints), where grad N det J0 is cubic, so the patch test needs
+ *    degree >= 3 (the 4-point rule leaves interior forces of 2 % of the boundary forces on a
+ *    patch with mid-nodes moved by 4 % of the edge length).
+ *  - tet 14-point (degree 5, positive weights; Walkington 2014): the consistent-mass diagonal
+ *    (degree 4) of the HRZ lumping.
  *  - triangle 3-point (degree 2) for tri3 and 6-point (degree 4, Strang-Fix/Dunavant) for tri6:
  *    N_a (x,r x x,s) and x.(x,r x x,s) are degree 4 on a tri6, so face forces, load stiffness
  *    and face volumes are integrated exactly. */
@@ -29,7 +32,8 @@ typedef struct {
   double w[FEM_KQ_MAX_QP];    /* weights (sum = reference volume or area) */
 } FemKqRule;
 
-extern const FemKqRule fem_kq_tet1, fem_kq_tet4, fem_kq_tet14, fem_kq_tri3, fem_kq_tri6;
+extern const FemKqRule fem_kq_tet1, fem_kq_tet4, fem_kq_tet8, fem_kq_tet14, fem_kq_tri3,
+    fem_kq_tri6;
 
 /* Tet shape functions N [out] nen (may be NULL) and derivatives dN [out] nen x 3 (d/dr, d/ds,
  * d/dt) at barycentric L [in]; nen = 4 or 10. */

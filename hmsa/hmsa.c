@@ -755,13 +755,17 @@ static int run_sweep(const HmsaScene *s, const HmsaVariant *v, const SaRun *run,
       file_name(png, sizeof png, pass ? "sweep_inplane" : "sweep", v->tag, "png");
       SA_CHECK(sa_run_path(run, png, ppath));
       const char *c = pass ? csv2 : csv;
-      snprintf(body, sizeof body,
-               "set datafile separator ','\nset key top right\nset title 'steady amplitude %s'\n"
-               "set xlabel 'Omega'\nset ylabel '%s'\n"
-               "plot '%s' using 1:($3==0?$2:1/0) with linespoints pt 7 ps 0.5 title 'from rest', "
-               "'%s' using 1:($3==1?$2:1/0) with lines title 'continuation up', "
-               "'%s' using 1:($3==2?$2:1/0) with lines dt 2 title 'continuation down'\n",
-               v->tag, pass ? "a (lambda)" : "a3 (lambda3)", c, c, c);
+      int k = snprintf(body, sizeof body,
+                       "set datafile separator ','\nset key top right\nset title 'steady amplitude %s'\n"
+                       "set xlabel 'Omega'\nset ylabel '%s'\n"
+                       "plot '%s' using 1:($3==0?$2:1/0) with linespoints pt 7 ps 0.5 title 'from rest'",
+                       v->tag, pass ? "a (lambda)" : "a3 (lambda3)", c);
+      if (w->continuation && k > 0 && (size_t)k < sizeof body)
+        k += snprintf(body + k, sizeof body - (size_t)k,
+                      ", '%s' using 1:($3==1?$2:1/0) with lines title 'continuation up', "
+                      "'%s' using 1:($3==2?$2:1/0) with lines dt 2 title 'continuation down'",
+                      c, c);
+      if (k > 0 && (size_t)k + 2 < sizeof body) strcat(body, "\n");
       if (sa_plot_script(ppath, body)) sa_error_clear();
     }
   }

@@ -1,6 +1,6 @@
 /* fem_kernels_bench.c - cost of the element kernels: microseconds per call of fem_element_tl
  * (residual + tangent, and residual only) for tet4, straight tet10 (4-point rule) and curved
- * tet10 (14-point rule), Yeoh silicone at K/mu = 500. Thread CPU time, so the numbers hold on a
+ * tet10 (8-point rule), Yeoh silicone at K/mu = 500. Thread CPU time, so the numbers hold on a
  * shared machine (wall time there includes waiting for a core). Not a test; run by hand:
  *   fem_kernels_bench [calls] */
 #include <stdio.h>
@@ -49,7 +49,7 @@ int main(int argc, char **argv)
          bench(FEM_TET4, 0, 0, calls, &m));
   printf("tet10 (4 qp)      %10.3f              %10.3f\n", bench(FEM_TET10, 0, 1, calls, &m),
          bench(FEM_TET10, 0, 0, calls, &m));
-  printf("tet10 curved (14) %10.3f              %10.3f\n",
+  printf("tet10 curved (8)  %10.3f              %10.3f\n",
          bench(FEM_TET10, 0.03, 1, calls / 3, &m), bench(FEM_TET10, 0.03, 0, calls / 3, &m));
   return 0;
 }

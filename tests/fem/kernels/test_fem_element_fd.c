@@ -1,6 +1,6 @@
 /* test_fem_element_fd.c - consistency of the tet4/tet10 kernels by central finite differences:
  * fe = dPi/du (FD of the element energy) and Ke = dfe/du (FD of fe), with random distorted
- * geometry (straight-sided tet10: 4-point rule; curved tet10: 14-point rule) and random
+ * geometry (straight-sided tet10: 4-point rule; curved tet10: 8-point rule) and random
  * displacements (det F ~ 0.8..1.3), for each law and for K/mu = 1000 (near-incompressible, where
  * the volumetric term dominates K by 1000x: the tolerance is relative to the largest entry), with
  * the default fluctuation modulus kappa_s = 4 mu0, kappa_s = kappa (K/mu = 3 and the stiff law:

@@ -2,7 +2,7 @@
  * mesh gives zero internal force at every interior node. The mesh: the 8 corners of a perturbed
  * cube and one interior centre node, 12 tets (centre + each of the 12 triangles of the cube's
  * surface); interior nodes are the centre and the 8 mid-nodes of the spokes. Both with straight
- * edges (4-point rule) and with curved spokes and faces (mid-nodes displaced, 14-point rule).
+ * edges (4-point rule) and with curved spokes and faces (mid-nodes displaced, 8-point rule).
  * F constant means constant P and theta = J in every element, so f_a = P int grad N_a dV, whose
  * sum over the patch vanishes for interior a when the rule integrates grad N det J0 exactly
  * (degree 1 for straight, 3 for curved tet10). Tolerance: 1e-11 of the largest nodal force

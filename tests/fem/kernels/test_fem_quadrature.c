@@ -129,6 +129,7 @@ int main(void)
 {
   check_rule("tet 1-point", &fem_kq_tet1, 4, 1);
   check_rule("tet 4-point", &fem_kq_tet4, 4, 2);
+  check_rule("tet 8-point", &fem_kq_tet8, 4, 3);
   check_rule("tet 14-point", &fem_kq_tet14, 4, 5);
   check_rule("tri 3-point", &fem_kq_tri3, 3, 2);
   check_rule("tri 6-point", &fem_kq_tri6, 3, 4);
