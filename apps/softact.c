@@ -252,8 +252,8 @@ int main(int argc, char **argv) {
   if (rc) {
     if (rc == SA_ERR_INTERRUPTED)
       fprintf(stderr, "softact: interrupted; results computed so far are kept\n");
-    else
-      sa_error_print();
+    else /* the call trace helps with a failure, not with a typo in a case file */
+      sa_error_print_opt(sa_error_exit_status(rc) != 1 || sa_log_get_level() >= SA_LOG_DEBUG);
   }
   return sa_error_exit_status(rc);
 }

@@ -50,11 +50,13 @@ int sa_error_push(int code, const char *func, const char *file, int line) {
   return code;
 }
 
-void sa_error_print(void) {
+void sa_error_print(void) { sa_error_print_opt(1); }
+
+void sa_error_print_opt(int with_trace) {
   if (!sa_code && !sa_nframes) return;
   fprintf(stderr, "error: %s%s%s\n", sa_msg[0] ? sa_msg : "", sa_msg[0] ? " -- " : "",
           sa_error_string(sa_code));
-  for (int i = 0; i < sa_nframes; i++)
+  for (int i = 0; with_trace && i < sa_nframes; i++)
     fprintf(stderr, "  at %s (%s:%d)\n", sa_frames[i].func, sa_frames[i].file, sa_frames[i].line);
   sa_error_clear();
 }

@@ -50,6 +50,8 @@ int sa_error_set(int code, const char *func, const char *file, int line, const c
 int sa_error_push(int code, const char *func, const char *file, int line);
 /* Print the trace (message first, then frames) to stderr and clear it. */
 void sa_error_print(void);
+/* Same, but the frames only if with_trace (a typo in a case file needs no call trace). */
+void sa_error_print_opt(int with_trace);
 /* Clear the trace (after a recoverable failure was handled). */
 void sa_error_clear(void);
 /* The message of the last sa_error_set (empty string if none). */

@@ -450,8 +450,8 @@ static int sa_param_set(const SaParamTable *t, const SaParam *p, const char *val
         if (l->n == SA_LIST_MAX)
           return SA_ERROR(SA_ERR_INPUT, "%s: [%s] %s: more than %d values", where, t->section, p->key, SA_LIST_MAX);
         if (sa_parse_real(tok, &v) || !sa_in_range(p, v))
-          return SA_ERROR(SA_ERR_INPUT, "%s: [%s] %s: '%s' is not a real number in %s [%s]", where, t->section,
-                          p->key, tok, range, p->unit);
+          return SA_ERROR(SA_ERR_INPUT, "%s: [%s] %s = '%s': expected a real number in %s [%s] (or a comma-separated list of them)",
+                          where, t->section, p->key, tok, range, p->unit);
         l->v[l->n++] = v;
       }
       if (l->n == 0)

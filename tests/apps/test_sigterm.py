@@ -9,7 +9,8 @@ CASE = """[hmsa]
 model = zener
 loading = sq
 omega = 2.1
-t_end = 1e7
+t_end = 1e5
+dt_out = 0.1
 """
 
 def check_outputs(out, label, fails):

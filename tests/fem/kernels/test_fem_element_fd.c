@@ -8,7 +8,8 @@
  * Central differences with h = 1e-6 (element size 1): truncation ~h^2 |Pi'''| and round-off
  * ~eps |f| / h, both < 1e-8 of the largest entry; rtol 1e-6 leaves margin. Also checked: Ke
  * symmetric, rigid-body invariance (fe sums to zero, Ke annihilates translations), the
- * stress-free reference gives fe = 0 and theta = 1, and inversion returns SA_ERR_INVERTED. */
+ * stress-free reference gives fe = 0 and theta = 1, inversion returns SA_ERR_INVERTED and a
+ * degenerate reference element SA_ERR_INPUT. */
 #include <stdio.h>
 #include <string.h>
 
@@ -114,6 +115,15 @@ int main(void)
     snprintf(name, sizeof name, "tet10 curved %s", names[l]);
     check(name, FEM_TET10, 0.05, &laws[l]);
   }
+  /* Degenerate reference element (node 3 in the plane of 0, 1, 2): a mesh error, not numerical. */
+  double Xd[30];
+  kt_random_tet(10, 0, 0, Xd);
+  for (int a = 0; a < 10; a++) Xd[3 * a + 2] = 0;
+  if (fem_element_tl(FEM_TET10, Xd, Xd, &laws[0], NULL, NULL, 1, &out) != SA_ERR_INPUT) {
+    fprintf(stderr, "degenerate reference element not reported as SA_ERR_INPUT\n");
+    kt_fail++;
+  }
+  sa_error_clear();
   if (kt_fail) fprintf(stderr, "%d checks failed\n", kt_fail);
   return kt_fail != 0;
 }
