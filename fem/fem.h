@@ -46,6 +46,7 @@ typedef struct {
   double atol;       /* absolute residual norm [N] */
   double vtol;       /* volume-constraint tolerance relative to the reference cavity volume */
   int max_iter;      /* Newton iterations per substep before it counts as diverged */
+  int max_stall;     /* consecutive iterations that fail to halve |R| before giving up */
   int line_search;   /* backtracking on inverted elements, NaN, residual growth > ls_growth */
   double ls_growth;  /* residual growth factor that triggers backtracking */
   double dl_init;    /* first load-parameter increment (fraction of the ramp) */
@@ -82,7 +83,7 @@ typedef struct {
   double t_assemble, t_factor, t_solve, t_symbolic; /* seconds */
   int n_assemble, n_factor, n_solve;                /* calls (assembly incl. residual-only) */
   int n_chol, n_lu;
-  int ncolors;              /* element colours of the parallel assembly */
+  int n_interface;          /* elements scattered serially after the threaded slabs */
 } FemSolverStats;
 
 /* mesh [borrowed, must outlive the solver]; mats [in] one per mesh region (copied). */

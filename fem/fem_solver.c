@@ -22,7 +22,6 @@
 #include "sa_error.h"
 #include "sa_log.h"
 
-#define MAXCOL_WORDS 4 /* up to 256 colours */
 
 struct FemSolver {
   const FemMesh *m;
@@ -39,7 +38,7 @@ struct FemSolver {
   long nnz;
   double *val;
   int *adj_ptr, *adj, *slot9, *epair, *fpair;
-  int ncolors, *color_ptr, *color_elem;
+  int ngroups, *group_ptr, *group_elem; /* threaded assembly groups (see build_partition) */
   FemLinSolver *lin;
 
   /* history per quadrature point: committed and trial */
@@ -78,6 +77,7 @@ struct FemSolver {
   FemSolverStats st;
   int last_sym;   /* symmetric path used at the last factorisation */
   int saw_not_pd; /* a factorisation in the current substep was not positive definite */
+  int skip_chol;  /* ... so the rest of the substep uses LU directly */
 };
 
 FemSolverParams fem_solver_params_default(void) {
@@ -85,7 +85,7 @@ FemSolverParams fem_solver_params_default(void) {
       .rtol = 1e-8, .atol = 1e-14, .vtol = 1e-10, .max_iter = 25, .line_search = 1,
       .dl_init = 1.0, .dl_min = 1e-4, .dl_max = 1.0, .easy_iter = 5, .grow = 1.5, .cut = 0.5,
       .threads = 2, .linsolver = FEM_LINSOLVER_AUTO, .sym_tol = 1e-9, .hht_alpha = -0.05,
-      .mass_damping = 0.0, .ls_growth = 1e3};
+      .mass_damping = 0.0, .ls_growth = 1e3, .max_stall = 6};
   return p;
 }
 
@@ -296,44 +296,72 @@ static int build_pair_maps(FemSolver *s) {
   return 0;
 }
 
-/* Greedy element colouring: no two elements of a colour share a node, so the scatter of a
- * colour runs in parallel without locks. */
-static int build_colors(FemSolver *s) {
+/* Element partition for the threaded assembly: elements sorted by the centroid coordinate along
+ * the mesh's longest axis, cut into `threads` slabs of equal count; an element all of whose
+ * nodes belong to its own slab only goes to that slab's group (groups 0..T-1 are scattered
+ * concurrently without conflicts), the rest (a few layers at the cuts) to group T, scattered
+ * serially afterwards. One fork/join per assembly: a per-colour barrier (graph colouring) costs
+ * a scheduler time slice each on an oversubscribed machine, which we measured to dominate. */
+typedef struct {
+  double key;
+  int e;
+} ElemKey;
+
+static int cmp_ekey(const void *a, const void *b) {
+  double x = ((const ElemKey *)a)->key, y = ((const ElemKey *)b)->key;
+  return (x > y) - (x < y);
+}
+
+static int build_partition(FemSolver *s) {
   const FemMesh *m = s->m;
-  int nen = s->nen, ne = m->nelem;
-  uint64_t *used;
-  int *col;
-  SA_CALLOC(used, (size_t)s->N * MAXCOL_WORDS);
-  SA_CALLOC(col, ne);
-  int ncol = 0;
+  int nen = s->nen, ne = m->nelem, T = s->prm.threads;
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int i = 0; i < s->N; i++)
+    for (int k = 0; k < 3; k++) {
+      lo[k] = fmin(lo[k], m->xyz[3 * i + k]);
+      hi[k] = fmax(hi[k], m->xyz[3 * i + k]);
+    }
+  int ax = 0;
+  for (int k = 1; k < 3; k++)
+    if (hi[k] - lo[k] > hi[ax] - lo[ax]) ax = k;
+  ElemKey *ek;
+  int *owner, *grp;
+  SA_CALLOC(ek, ne);
+  SA_CALLOC(owner, s->N);
+  SA_CALLOC(grp, ne);
   for (int e = 0; e < ne; e++) {
     const int *c = m->conn + (size_t)e * nen;
-    uint64_t any[MAXCOL_WORDS] = {0};
-    for (int a = 0; a < nen; a++)
-      for (int w = 0; w < MAXCOL_WORDS; w++) any[w] |= used[(size_t)c[a] * MAXCOL_WORDS + w];
-    int k = -1;
-    for (int w = 0; w < MAXCOL_WORDS && k < 0; w++)
-      if (~any[w]) k = 64 * w + __builtin_ctzll(~any[w]);
-    if (k < 0) {
-      free(used);
-      free(col);
-      return SA_ERROR(SA_ERR_INTERNAL, "more than %d element colours", 64 * MAXCOL_WORDS);
-    }
-    col[e] = k;
-    if (k + 1 > ncol) ncol = k + 1;
-    for (int a = 0; a < nen; a++) used[(size_t)c[a] * MAXCOL_WORDS + k / 64] |= 1ULL << (k % 64);
+    ek[e].e = e;
+    for (int a = 0; a < 4; a++) ek[e].key += 0.25 * m->xyz[3 * c[a] + ax];
   }
-  s->ncolors = ncol;
-  SA_CALLOC(s->color_ptr, ncol + 1);
-  SA_CALLOC(s->color_elem, ne);
-  for (int e = 0; e < ne; e++) s->color_ptr[col[e] + 1]++;
-  for (int k = 0; k < ncol; k++) s->color_ptr[k + 1] += s->color_ptr[k];
+  qsort(ek, (size_t)ne, sizeof *ek, cmp_ekey);
+  for (int i = 0; i < s->N; i++) owner[i] = -1;
+  for (int t = 0; t < ne; t++) {
+    int e = ek[t].e, slab = (int)((long)t * T / ne);
+    grp[e] = slab;
+    const int *c = m->conn + (size_t)e * nen;
+    for (int a = 0; a < nen; a++) {
+      if (owner[c[a]] == -1) owner[c[a]] = slab;
+      else if (owner[c[a]] != slab) owner[c[a]] = -2;
+    }
+  }
+  for (int e = 0; e < ne; e++) {
+    const int *c = m->conn + (size_t)e * nen;
+    for (int a = 0; a < nen; a++)
+      if (owner[c[a]] != grp[e]) grp[e] = T;
+  }
+  s->ngroups = T + 1;
+  SA_CALLOC(s->group_ptr, T + 2);
+  SA_CALLOC(s->group_elem, ne);
+  for (int e = 0; e < ne; e++) s->group_ptr[grp[e] + 1]++;
+  for (int k = 0; k <= T; k++) s->group_ptr[k + 1] += s->group_ptr[k];
   int *fill;
-  SA_CALLOC(fill, ncol);
-  for (int e = 0; e < ne; e++) s->color_elem[s->color_ptr[col[e]] + fill[col[e]]++] = e;
+  SA_CALLOC(fill, T + 1);
+  for (int e = 0; e < ne; e++) s->group_elem[s->group_ptr[grp[e]] + fill[grp[e]]++] = e;
   free(fill);
-  free(used);
-  free(col);
+  free(ek);
+  free(owner);
+  free(grp);
   return 0;
 }
 
@@ -344,7 +372,7 @@ int fem_solver_setup(FemSolver *s) {
   SA_CHECK(build_node_graph(s));
   SA_CHECK(build_pattern(s));
   SA_CHECK(build_pair_maps(s));
-  SA_CHECK(build_colors(s));
+  SA_CHECK(build_partition(s));
 
   int ne = m->nelem, nd = s->ndof, nf = s->nfree;
   SA_CALLOC(s->hoff, ne + 1);
@@ -385,7 +413,7 @@ int fem_solver_setup(FemSolver *s) {
   s->st.nnz_k = s->nnz;
   s->st.nnz_l = li.nnz_l;
   s->st.t_symbolic = sa_time_now() - t0;
-  s->st.ncolors = s->ncolors;
+  s->st.n_interface = s->group_ptr[s->ngroups] - s->group_ptr[s->ngroups - 1];
   s->setup_done = 1;
 
   /* reference cavity volume */
@@ -400,63 +428,68 @@ int fem_solver_setup(FemSolver *s) {
   s->V = s->V_c = s->V_t = s->V_last = s->V_prev = s->V_goal = s->V_ref;
   sa_log(SA_LOG_INFO, "fem",
          "setup: %d nodes, %d %s elements, %d free dofs, nnz(K) %ld, nnz(L) %.3g (fill %.1f), "
-         "%d colours, %d pressure faces, V0 = %.6g m^3, symbolic %.3f s",
+         "%d threads (%d interface elements), %d pressure faces, V0 = %.6g m^3, symbolic %.3f s",
          s->N, ne, m->etype == FEM_TET10 ? "tet10" : "tet4", nf, s->nnz, li.nnz_l,
-         li.nnz_l / (0.5 * (s->nnz + nf)), s->ncolors, s->npf, s->V_ref, s->st.t_symbolic);
+         li.nnz_l / (0.5 * (s->nnz + nf)), s->prm.threads, s->st.n_interface, s->npf, s->V_ref, s->st.t_symbolic);
   return 0;
 }
 
 /* ------------------------------------------------------------------ assembly */
 
+/* Kernel and scatter of one element (f_int and, if want_K, the tangent slots). */
+static void elem_work(FemSolver *s, int e, const double *x, int want_K, double *energy,
+                      double *min_detF, int *n_inv) {
+  const FemMesh *m = s->m;
+  int nen = s->nen, nd = 3 * nen;
+  const int *c = m->conn + (size_t)e * nen;
+  double X[30], xe[30];
+  FemElemOut out;
+  for (int a = 0; a < nen; a++)
+    for (int k = 0; k < 3; k++) {
+      X[3 * a + k] = m->xyz[3 * c[a] + k];
+      xe[3 * a + k] = x[3 * c[a] + k];
+    }
+  int r = m->region ? m->region[e] : 0;
+  int rc = fem_element_tl(m->etype, X, xe, &s->mats[r], s->hist_c + s->hoff[e],
+                          s->hist_t + s->hoff[e], want_K, &out);
+  if (rc != 0 || !isfinite(out.energy)) {
+    (*n_inv)++;
+    return;
+  }
+  *energy += out.energy;
+  if (out.min_detF < *min_detF) *min_detF = out.min_detF;
+  for (int a = 0; a < nen; a++)
+    for (int k = 0; k < 3; k++) s->fint[3 * c[a] + k] += out.fe[3 * a + k];
+  if (!want_K) return;
+  const int *ep = s->epair + (size_t)e * nen * nen;
+  for (int a = 0; a < nen; a++)
+    for (int b = 0; b < nen; b++) {
+      const int *sl = s->slot9 + (size_t)ep[a * nen + b] * 9;
+      const double *Kab = out.Ke + (size_t)(3 * a) * nd + 3 * b;
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+          int k = sl[3 * i + j];
+          if (k >= 0) s->val[k] += Kab[i * nd + j];
+        }
+    }
+}
+
 /* f_int, q, V, g (all dofs) and, if want_K, the tangent values over the free dofs at x with
  * pressure p. Returns SA_ERR_INVERTED if an element inverted (state otherwise undefined). */
 static int assemble(FemSolver *s, const double *x, double p, int want_K) {
   double t0 = sa_time_now();
-  const FemMesh *m = s->m;
-  int nen = s->nen, nd = 3 * nen;
   memset(s->fint, 0, (size_t)s->ndof * sizeof *s->fint);
   if (want_K) memset(s->val, 0, (size_t)s->nnz * sizeof *s->val);
   double energy = 0.0, min_detF = INFINITY;
-  int n_inv = 0;
-  for (int col = 0; col < s->ncolors; col++) {
-    int e0 = s->color_ptr[col], e1 = s->color_ptr[col + 1];
-#pragma omp parallel for num_threads(s->prm.threads) schedule(dynamic, 32) \
-    reduction(+ : energy, n_inv) reduction(min : min_detF)
-    for (int t = e0; t < e1; t++) {
-      int e = s->color_elem[t];
-      const int *c = m->conn + (size_t)e * nen;
-      double X[30], xe[30];
-      FemElemOut out;
-      for (int a = 0; a < nen; a++)
-        for (int k = 0; k < 3; k++) {
-          X[3 * a + k] = m->xyz[3 * c[a] + k];
-          xe[3 * a + k] = x[3 * c[a] + k];
-        }
-      int r = m->region ? m->region[e] : 0;
-      int rc = fem_element_tl(m->etype, X, xe, &s->mats[r], s->hist_c + s->hoff[e],
-                              s->hist_t + s->hoff[e], want_K, &out);
-      if (rc != 0 || !isfinite(out.energy)) {
-        n_inv++;
-        continue;
-      }
-      energy += out.energy;
-      if (out.min_detF < min_detF) min_detF = out.min_detF;
-      for (int a = 0; a < nen; a++)
-        for (int k = 0; k < 3; k++) s->fint[3 * c[a] + k] += out.fe[3 * a + k];
-      if (!want_K) continue;
-      const int *ep = s->epair + (size_t)e * nen * nen;
-      for (int a = 0; a < nen; a++)
-        for (int b = 0; b < nen; b++) {
-          const int *sl = s->slot9 + (size_t)ep[a * nen + b] * 9;
-          const double *Kab = out.Ke + (size_t)(3 * a) * nd + 3 * b;
-          for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++) {
-              int k = sl[3 * i + j];
-              if (k >= 0) s->val[k] += Kab[i * nd + j];
-            }
-        }
-    }
-  }
+  int n_inv = 0, T = s->prm.threads;
+  /* slabs 0..T-1 share no node: one thread each; then the interface group serially */
+#pragma omp parallel for num_threads(T) schedule(static, 1) reduction(+ : energy, n_inv) \
+    reduction(min : min_detF)
+  for (int g = 0; g < T; g++)
+    for (int k = s->group_ptr[g]; k < s->group_ptr[g + 1]; k++)
+      elem_work(s, s->group_elem[k], x, want_K, &energy, &min_detF, &n_inv);
+  for (int k = s->group_ptr[T]; k < s->group_ptr[T + 1]; k++)
+    elem_work(s, s->group_elem[k], x, want_K, &energy, &min_detF, &n_inv);
   if (n_inv) sa_error_clear();
   s->energy = energy;
   s->min_detF = min_detF;
@@ -633,7 +666,8 @@ static int factorize(FemSolver *s, const StepKind *sk) {
     for (int d = 0; d < s->ndof; d++)
       if (s->eq[d] >= 0) s->val[s->diag[s->eq[d]]] += cm * s->mlump[d / 3];
   }
-  int sym = s->prm.linsolver == FEM_LINSOLVER_AUTO;
+  /* once CHOLMOD found the tangent indefinite in this substep, go to LU directly */
+  int sym = s->prm.linsolver == FEM_LINSOLVER_AUTO && !s->skip_chol;
   if (sym) {
     double asym = fem_linsolve_asymmetry(s->lin, s->val);
     if (asym > s->prm.sym_tol) {
@@ -650,7 +684,7 @@ static int factorize(FemSolver *s, const StepKind *sk) {
   FemLinInfo li;
   fem_linsolve_info(s->lin, &li);
   if (li.not_pd) {
-    s->saw_not_pd = s->fail_not_pd = 1;
+    s->saw_not_pd = s->fail_not_pd = s->skip_chol = 1;
     sa_log(s->last_sym ? SA_LOG_INFO : SA_LOG_DEBUG, "fem",
            "tangent not positive definite (CHOLMOD): fallback to UMFPACK LU");
   }
@@ -684,9 +718,9 @@ static void set_x(FemSolver *s) {
 static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
   const int vol = s->control == FEM_CONTROL_VOLUME;
   const int nf = s->nfree;
-  int ls = 0, it = 0;
+  int ls = 0, it = 0, stall = 0;
   double r_prev = -1, r_first = -1, merit_prev = INFINITY, step_len = 1.0, dp = 0.0, gb = 0.0;
-  double du_norm = 0.0;
+  double du_norm = 0.0, qnorm = 0.0;
   *iters = 0;
   for (;;) {
     if (sk->dynamic) newmark_update(s, sk);
@@ -695,14 +729,10 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
     if (rc == 0) {
       rnorm = residual(s, sk, &fref);
       if (vol) c = s->V - s->V_goal;
-      double qn = 0;
-      if (vol && gb != 0.0) {
-        for (int d = 0; d < s->ndof; d++)
-          if (s->eq[d] >= 0) qn += s->q[d] * s->q[d];
-        merit = rnorm + sqrt(qn) * fabs(c) / fabs(gb);
-      } else {
-        merit = rnorm;
-      }
+      /* merit: |R| plus, under volume control, the constraint violation in force units
+       * (|q| |c| / (g.b): the pressure error that c implies, times the load per pressure) */
+      merit = rnorm;
+      if (vol && gb != 0.0) merit += qnorm * fabs(c) / fabs(gb);
     }
     int bad = rc != 0 || !isfinite(rnorm);
     /* Backtrack on inverted elements / non-finite residuals, and on a residual blow-up by
@@ -734,7 +764,7 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
     else
       sa_log(SA_LOG_DEBUG, "fem", "step %d it %2d |R| %.3e |du| %.3e rate %.3f%s", step, it,
              rnorm, du_norm, rate, ls ? "  (line search)" : "");
-    if (r_first < 0) r_first = rnorm;
+    if (it <= 1) r_first = fmax(r_first, rnorm); /* it 0 may be ~0 under volume control */
     int conv = rnorm <= s->prm.rtol * fref + s->prm.atol &&
                (!vol || fabs(c) <= s->prm.vtol * s->V_ref);
     if (conv) {
@@ -745,6 +775,12 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
       *iters = it;
       return SA_ERROR(SA_ERR_NOT_CONVERGED, "no convergence in %d iterations (|R| %.3e, %.3e x "
                       "tolerance)", it, rnorm, rnorm / (s->prm.rtol * fref + s->prm.atol));
+    }
+    stall = (it > 1 && rnorm > 0.5 * r_prev) ? stall + 1 : 0;
+    if (stall >= s->prm.max_stall) {
+      *iters = it;
+      return SA_ERROR(SA_ERR_NOT_CONVERGED, "Newton stalled (|R| %.3e not halved in %d "
+                      "iterations)", rnorm, stall);
     }
     if (it >= 3 && rnorm > 1e6 * r_first) {
       *iters = it;
@@ -773,6 +809,8 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
                         "singular)");
       }
       dp = -(c + dot(s->gf, s->da, nf)) / gb;
+      qnorm = nrm2(s->qf, nf);
+      merit = rnorm + qnorm * fabs(c) / fabs(gb);
       for (int k = 0; k < nf; k++) s->du[k] = s->da[k] + dp * s->db[k];
     } else {
       dp = 0.0;
@@ -895,6 +933,7 @@ static int ramp(FemSolver *s, int dynamic, double dt_total) {
     }
     int iters = 0;
     global_step++;
+    s->skip_chol = 0;
     int rc = newton(s, &sk, global_step, &iters);
     s->rep.newton_iters += iters;
     if (rc > 0 && use_pred) { /* retry once from the last converged state */
@@ -1016,8 +1055,8 @@ void fem_solver_destroy(FemSolver **ps) {
   FemSolver *s = *ps;
   fem_linsolve_destroy(&s->lin);
   void *ptrs[] = {s->mats, s->fixmask, s->pf, s->eq, s->colptr, s->rowind, s->diag, s->val,
-                  s->adj_ptr, s->adj, s->slot9, s->epair, s->fpair, s->color_ptr,
-                  s->color_elem, s->hoff, s->hist_c, s->hist_t, s->u, s->x, s->v, s->acc,
+                  s->adj_ptr, s->adj, s->slot9, s->epair, s->fpair, s->group_ptr,
+                  s->group_elem, s->hoff, s->hist_c, s->hist_t, s->u, s->x, s->v, s->acc,
                   s->u_last, s->v_last, s->a_last, s->u_prev, s->fn_c, s->fn_t, s->up_c,
                   s->up_t, s->mlump, s->fint, s->q, s->gv, s->fdead, s->res_n, s->R, s->da,
                   s->db, s->du, s->rhs, s->qf, s->gf, s->u_it};

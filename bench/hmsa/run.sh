@@ -7,12 +7,19 @@
 #   docs/img/hmsa_*.png                 gnuplot figures
 # Usage: bench/hmsa/run.sh [all|c|octave|report]   (default all)
 # Environment: BUILD_DIR (default <repo>/build), HMSA_BENCH_EXE (use this binary, skip the build),
-#              REPS (3), QUICK=1 (fewer tolerances and periods: a smoke test, not for docs/).
+#              REPS (3), QUICK=1 (fewer tolerances and periods, a smoke test of a few minutes:
+#              results and report go to bench/hmsa/results-quick/, docs/ is left alone).
+# Needs: cmake, a C compiler, gnuplot, python3, and apt-get (root or sudo) if octave is missing.
 set -euo pipefail
 
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
 RES=$HERE/results
+DOCS=$ROOT/docs
+if [[ ${QUICK:-0} == 1 ]]; then
+  RES=$HERE/results-quick
+  DOCS=$RES/docs
+fi
 BUILD_DIR=${BUILD_DIR:-$ROOT/build}
 REPS=${REPS:-3}
 STAGE=${1:-all}
@@ -50,7 +57,10 @@ run_c() {
   if [[ -z $exe ]]; then
     log "building hmsa_bench in $BUILD_DIR"
     cmake -S "$ROOT" -B "$BUILD_DIR" >/dev/null
-    cmake --build "$BUILD_DIR" --target hmsa_bench -j2 >/dev/null
+    if ! cmake --build "$BUILD_DIR" --target hmsa_bench -j2 >/dev/null; then
+      log "cannot build target hmsa_bench (is add_subdirectory(bench) in CMakeLists.txt?)"
+      exit 1
+    fi
     exe=$BUILD_DIR/bench/hmsa/hmsa_bench
   fi
   cut -d' ' -f1-3 /proc/loadavg >"$RES/load_c.txt"
@@ -116,7 +126,7 @@ report() {
     echo "quick=${QUICK:-0}"
     echo "reps=$REPS"
   } >"$RES/meta.txt"
-  python3 "$HERE/analyse.py" "$RES" "$ROOT/docs"
+  python3 "$HERE/analyse.py" "$RES" "$DOCS"
 }
 
 case $STAGE in

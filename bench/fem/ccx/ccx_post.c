@@ -5,7 +5,9 @@
  *   *NODE PRINT ... FREQUENCYF=1) and prints, per increment: step time, the tip displacement
  *   (area-weighted mean over the reference tip surface) and the bending angle: the rotation of
  *   the tip surface's mean outward normal N = int n da (deformed) in the x-z plane, positive
- *   toward -x (the strain-limiting side): angle = atan2(-N_x, -N_z). With --log (ccx's stdout)
+ *   toward -x (the strain-limiting side): angle = atan2(-N_x, -N_z) (the definition of
+ *   fem_bending_angle). u_xz = |(u_x, u_z)| is the tip displacement in the bending plane (u_y of
+ *   a half model's half tip surface is not the whole tip's, 0, so it is left out). With --log (ccx's stdout)
  *   the last line also gives the increments, attempts and Newton iterations ccx used.
  *   N depends only on the deformed rim of the tip surface (int n da = (1/2) oint x x dl), so
  *   the angle is insensitive to how the surface is triangulated.
@@ -176,12 +178,12 @@ static int cmd_tip(int argc, char **argv)
   SA_REQUIRE(f, SA_ERR_IO, "cannot open %s", path);
   double *u = calloc(3 * (size_t)t.n, sizeof *u), time;
   SA_REQUIRE(u, SA_ERR_MEMORY, "u");
-  printf("# time  tip_ux[m]  tip_uy[m]  tip_uz[m]  |u|[m]  angle[deg]\n");
+  printf("# time  tip_ux[m]  tip_uy[m]  tip_uz[m]  u_xz[m]  angle[deg]\n");
   while (dat_next(f, t.maxid, t.slot, u, &time)) {
     double um[3], ang;
     tip_eval(&t, u, um, &ang);
     printf("%.6f %.9e %.9e %.9e %.9e %.6f\n", time, um[0], um[1], um[2],
-           sqrt(um[0] * um[0] + um[1] * um[1] + um[2] * um[2]), ang);
+           sqrt(um[0] * um[0] + um[2] * um[2]), ang);
   }
   fclose(f);
   if (logf) {
@@ -215,9 +217,9 @@ static int cmd_field(int argc, char **argv)
   SA_REQUIRE(got == t.n, SA_ERR_INPUT, "%s covers %d of %d tip nodes", argv[3], got, t.n);
   double um[3], ang;
   tip_eval(&t, u, um, &ang);
-  printf("# time  tip_ux[m]  tip_uy[m]  tip_uz[m]  |u|[m]  angle[deg]\n");
+  printf("# time  tip_ux[m]  tip_uy[m]  tip_uz[m]  u_xz[m]  angle[deg]\n");
   printf("%.6f %.9e %.9e %.9e %.9e %.6f\n", 1.0, um[0], um[1], um[2],
-         sqrt(um[0] * um[0] + um[1] * um[1] + um[2] * um[2]), ang);
+         sqrt(um[0] * um[0] + um[2] * um[2]), ang);
   free(u);
   tip_free(&t);
   return 0;

@@ -50,6 +50,7 @@ static double p_exact(double la, double mu) {
 
 static int make_solver(FemMesh *m, const FemMaterial *mat, FemSolver **s) {
   FemSolverParams prm = fem_solver_params_default();
+  prm.dl_min = 1e-3; /* of a 0.1 p_max load step: locates the limit point to 1e-4 p_max */
   TU_CHECK(fem_solver_create(m, mat, &prm, s));
   TU_CHECK(fem_solver_fix_surface(*s, "sym_x", FEM_X));
   TU_CHECK(fem_solver_fix_surface(*s, "sym_y", FEM_Y));
@@ -111,6 +112,12 @@ int main(int argc, char **argv) {
   if (getenv("SA_TEST_VERBOSE"))
     printf("peak: fem %.6f exact %.6f (lambda_a %.4f) rel %.2e\n", pmax, p_peak, la_peak,
            (pmax - p_peak) / p_peak);
+  if (getenv("SA_TEST_VERBOSE")) {
+    FemSolverStats st;
+    fem_solver_stats(s, &st);
+    printf("volume control: %d free dofs, %d factorisations (%d LU), assemble %.2f s, factor "
+           "%.2f s\n", st.nfree, st.n_factor, st.n_lu, st.t_assemble, st.t_factor);
+  }
   fem_solver_destroy(&s);
 
   /* 2. pressure control stops at the limit point */
