@@ -44,6 +44,7 @@ typedef enum { FEM_LINSOLVER_AUTO = 0, FEM_LINSOLVER_LU = 1 } FemLinSolverChoice
 typedef struct {
   double rtol;       /* residual norm relative to the internal-force norm (incl. reactions) */
   double atol;       /* absolute residual norm [N] */
+  double utol;       /* or: last full Newton update <= utol |u| (residual at round-off floor) */
   double vtol;       /* volume-constraint tolerance relative to the reference cavity volume */
   int max_iter;      /* Newton iterations per substep before it counts as diverged */
   int max_stall;     /* consecutive iterations that fail to halve |R| before giving up */
@@ -84,6 +85,7 @@ typedef struct {
   int n_assemble, n_factor, n_solve;                /* calls (assembly incl. residual-only) */
   int n_chol, n_lu;
   int n_interface;          /* elements scattered serially after the threaded slabs */
+  double asymmetry;         /* max|K-K^T|/max|K| of the last tangent checked */
 } FemSolverStats;
 
 /* mesh [borrowed, must outlive the solver]; mats [in] one per mesh region (copied). */
@@ -140,6 +142,12 @@ double fem_solver_time(const FemSolver *s);
 int fem_solver_reactions(FemSolver *s, double *r);
 /* Total external force of the current pressure on the solid F [out] 3. */
 int fem_solver_pressure_resultant(FemSolver *s, double F[3]);
+/* Nodal forces of the current pressure on the solid f [out] 3 * nnodes (the load the DEM
+ * coupling replaces by contact forces). */
+int fem_solver_pressure_forces(FemSolver *s, double *f);
+/* max|K - K^T| / max|K| of the free-dof tangent at the current state (assembles; NaN if an
+ * element is inverted). */
+double fem_solver_tangent_asymmetry(FemSolver *s);
 /* Element-averaged Cauchy stress sigma [out] 9*nelem, von Mises vm [out] nelem, principal
  * stretches lam [out] 3*nelem (any may be NULL). */
 int fem_solver_element_stress(FemSolver *s, double *sigma, double *vm, double *lam);

@@ -161,6 +161,9 @@ static int start_solver(HmsaIntegrator *it, HmsaMethod method, double t0, double
       SUN_CHECK(ERKStepSetTableNum(it->erk, ARKODE_DORMAND_PRINCE_7_4_5));
       SUN_CHECK(ERKStepSetErrHandlerFn(it->erk, silent_err, NULL));
       SUN_CHECK(ERKStepSetUserData(it->erk, it));
+      { const char *e = getenv("HMSA_ADAPT"); if (e && atoi(e) >= 0) SUN_CHECK(ERKStepSetAdaptivityMethod(it->erk, atoi(e), 1, getenv("HMSA_PQ") ? atoi(getenv("HMSA_PQ")) : 0, NULL)); }
+      { const char *e = getenv("HMSA_SAFETY"); if (e) SUN_CHECK(ERKStepSetSafetyFactor(it->erk, atof(e))); }
+      { const char *e = getenv("HMSA_BIAS"); if (e) SUN_CHECK(ERKStepSetErrorBias(it->erk, atof(e))); }
     } else {
       SUN_CHECK(ERKStepReInit(it->erk, rhs_cb, t0, it->y));
     }
@@ -230,6 +233,7 @@ int hmsa_integrator_create(const HmsaModel *m, const HmsaIntegratorOptions *o,
   it->y = N_VNew_Serial(it->n, it->ctx);
   it->ylast = N_VNew_Serial(it->n, it->ctx);
   it->yo = N_VNew_Serial(it->n, it->ctx);
+  { const char *e = getenv("HMSA_FUSED"); if (e && atoi(e) && it->y) N_VEnableFusedOps_Serial(it->y, SUNTRUE); }
   it->A = SUNDenseMatrix(it->n, it->n, it->ctx);
   if (!it->y || !it->ylast || !it->yo || !it->A) { rc = SA_ERROR(SA_ERR_MEMORY, "SUNDIALS allocation failed"); goto fail; }
   it->LS = SUNLinSol_Dense(it->y, it->A, it->ctx);

@@ -7,7 +7,8 @@
  * adaptive load stepping. Writes BASE.u (one "ux uy uz" line per node) for ccx_post field and
  * prints one summary line:
  *   ours: nodes N dof N elems N sig S substeps N cuts N newton N setup_s T solve_s T
- *         assemble_s T factor_s T angle_deg A
+ *         assemble_s T factor_s T n_chol N n_lu N angle_deg A
+ * (--verbose: the solver's INFO log, one line per substep, on stderr)
  *
  * usage: ccx_ours --geo FILE --h H --out BASE [--set NAME=VALUE]... [--kappa-ratio R]
  *          [--c10 ..] [--c20 ..] [--c30 ..] [--pressure P] [--threads N] [--rtol R]
@@ -50,6 +51,7 @@ static int run(int argc, char **argv)
     else if (OPT("--rtol")) prm.rtol = atof(v);
     else if (OPT("--dl-init")) prm.dl_init = atof(v);
     else if (OPT("--dl-max")) prm.dl_max = atof(v);
+    else if (!strcmp(a, "--verbose")) sa_log_set_level(SA_LOG_INFO);
     else if (OPT("--set")) {
       const char *eq = strchr(v, '=');
       SA_REQUIRE(nparams < MAX_OPTS && eq && eq - v < 63, SA_ERR_INPUT, "bad --set %s", v);
@@ -124,9 +126,10 @@ static int run(int argc, char **argv)
     if (!rc) rc = fem_bending_angle(mesh, "tip", fem_solver_positions(s), &ang);
     if (!rc)
       printf("ours: nodes %d dof %d elems %d sig %.12e substeps %d cuts %d newton %d setup_s %.3f "
-             "solve_s %.3f assemble_s %.3f factor_s %.3f angle_deg %.6f\n",
+             "solve_s %.3f assemble_s %.3f factor_s %.3f n_chol %d n_lu %d angle_deg %.6f\n",
              mesh->nnodes, 3 * mesh->nnodes, mesh->nelem, ccx_mesh_signature(mesh), rep.substeps,
-             rep.cuts, rep.newton_iters, t1 - t0, t2 - t1, st.t_assemble, st.t_factor, ang);
+             rep.cuts, rep.newton_iters, t1 - t0, t2 - t1, st.t_assemble, st.t_factor, st.n_chol,
+             st.n_lu, ang);
   }
   fem_solver_destroy(&s);
   fem_mesh_destroy(&mesh);

@@ -73,7 +73,7 @@ ours_run() {
   if [ ! -f "$n.done" ]; then
     echo "run.sh: ours $n, load $(cut -d' ' -f1-3 /proc/loadavg)"
     uptime > "$n.load"
-    /usr/bin/time -v "$T/ccx_ours" --out "$n" "$@" > "$n.ours" 2> "$n.time" || { echo "ours $n failed: $WORK/$n.time"; return 1; }
+    /usr/bin/time -v "$T/ccx_ours" --verbose --out "$n" "$@" > "$n.ours" 2> "$n.time" || { echo "ours $n failed: $WORK/$n.time"; return 1; }
     touch "$n.done"
   fi
   "$T/ccx_post" field "$n" "$n.u" > "$n.res"

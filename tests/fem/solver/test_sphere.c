@@ -91,7 +91,7 @@ int main(int argc, char **argv) {
   fails += tu_close("reference cavity volume (octant of the sphere)", V0, Vsph, 0, 3e-3);
   TU_CHECK(fem_solver_set_control(s, FEM_CONTROL_VOLUME));
   double pmax = 0, la_end = 2.4 * la_peak > 3.0 ? 3.0 : 1.8 * la_peak;
-  int nsteps = 24;
+  int nsteps = 16;
   for (int k = 1; k <= nsteps; k++) {
     double la = 1.0 + (la_end - 1.0) * k / nsteps;
     TU_CHECK(fem_solver_set_volume(s, V0 * la * la * la));
