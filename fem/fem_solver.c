@@ -721,7 +721,8 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
   const int nf = s->nfree;
   int ls = 0, it = 0, stall = 0;
   double r_prev = -1, r_first = -1, merit_prev = INFINITY, step_len = 1.0, dp = 0.0, gb = 0.0;
-  double du_norm = 0.0, qnorm = 0.0;
+  double du_norm = 0.0, qnorm = 0.0, Pi_prev = 0.0, slope0 = 0.0;
+  int bad_energy = 0, energy_ok = 0, use_energy = !vol && !sk->dynamic && s->prm.line_search == 1;
   *iters = 0;
   for (;;) {
     if (sk->dynamic) newmark_update(s, sk);
@@ -736,13 +737,31 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
       if (vol && gb != 0.0) merit += qnorm * fabs(c) / fabs(gb);
     }
     int bad = rc != 0 || !isfinite(rnorm);
+    /* Energy (Armijo) test for load control: the total potential
+     * Pi = sum Pi_e - p V - f_dead.u is what Newton minimises for a hyperelastic solid with a
+     * conservative pressure (rim fixed or closed); unlike |R| it is not inflated by kappa times
+     * the second-order volume error of a full step. Applied while the direction is a descent
+     * direction (slope < 0, tangent positive definite). */
+    double Pi = 0.0;
+    if (rc == 0 && use_energy) {
+      Pi = s->energy - s->p * s->V - dot(s->fdead, s->u, s->ndof);
+      if (it > 0 && energy_ok && slope0 < 0 &&
+          Pi > Pi_prev + 1e-4 * step_len * slope0 + 1e-12 * fabs(Pi_prev))
+        bad_energy = 1;
+    }
     /* Backtrack on inverted elements / non-finite residuals, and on a residual blow-up by
      * more than ls_growth. Not on any increase: for a nearly incompressible solid the full
      * Newton step changes the volume to second order and kappa times that makes the residual
      * norm jump although the next iterations converge quadratically (docs/fem.md). */
     if (it > 0 && s->prm.line_search && ls < 6 &&
-        (bad || merit > s->prm.ls_growth * merit_prev)) {
-      step_len *= 0.5;
+        (bad || bad_energy || merit > s->prm.ls_growth * merit_prev)) {
+      double snew = 0.5 * step_len;
+      if (bad_energy && !bad) { /* minimiser of the quadratic through Pi(0), Pi'(0), Pi(s) */
+        double den = 2.0 * (Pi - Pi_prev - slope0 * step_len);
+        if (den > 0) snew = fmin(0.5 * step_len, fmax(0.1 * step_len, -slope0 * step_len * step_len / den));
+      }
+      bad_energy = 0;
+      step_len = snew;
       ls++;
       for (int d = 0; d < s->ndof; d++)
         if (s->eq[d] >= 0) s->u[d] = s->u_it[d] + step_len * s->du[s->eq[d]];
@@ -821,6 +840,13 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
       memcpy(s->du, s->da, (size_t)nf * sizeof *s->du);
     }
     du_norm = nrm2(s->du, nf);
+    if (use_energy) {
+      Pi_prev = s->energy - s->p * s->V - dot(s->fdead, s->u, s->ndof);
+      slope0 = dot(s->R, s->du, nf);
+      /* only with a symmetric positive definite tangent (a potential exists, du descends) and
+       * away from convergence (near it, Pi changes at round-off level) */
+      energy_ok = s->last_sym && rnorm > 1e-4 * fref;
+    }
     memcpy(s->u_it, s->u, (size_t)s->ndof * sizeof *s->u);
     s->p_it = s->p;
     merit_prev = merit;

@@ -273,7 +273,9 @@ def main():
     out.append(
         "- softact: `hmsa_bench` (bench/hmsa/hmsa_bench.c) times `hmsa_integrator_create`, "
         "`_reset` and `_advance` of hmsa/hmsa_integrate.c: `erk` = ARKODE ERKStep "
-        "Dormand-Prince 5(4), `dirk` = ARKStep ARK548L2SA DIRK 5(4) with the analytic Jacobian, "
+        "Dormand-Prince 5(4) with ARKODE's ImEx Gustafsson step controller (adaptivity method "
+        "5, method order in the exponents), fused N_Vector kernels and the error weights "
+        "computed in one loop, `dirk` = ARKStep ARK548L2SA DIRK 5(4) with the analytic Jacobian, "
         "`bdf` = CVODE BDF with the analytic Jacobian, `auto` = ERK switching to BDF on "
         "stiffness. CPU time (and wall time) of the whole run, median of %s runs." %
         meta.get("reps", "3"))

@@ -15,7 +15,7 @@
  * lattice points minus face and body centres) and coincident nodes are merged afterwards
  * (spatial hash, tolerance 1e-10 m), so blocks need no shared numbering.
  *
- * usage: ccx_hex actuator --h H --out BASE [--rings 0|1] [--kappa-ratio R] [--pressure P]
+ * usage: ccx_hex actuator --h H --out BASE [--hr HR (radial size, default H)] [--rings 0|1] [--kappa-ratio R] [--pressure P]
  *                [--c10 ..] [--c20 ..] [--c30 ..] [--inc0 F] [--incmin F] [--incmax F]
  *                [--etype C3D20R|C3D20]
  *        ccx_hex box --lx L --ly L --lz L --nx N --ny N --nz N --out BASE [material, step] */
@@ -240,13 +240,13 @@ static int sort_unique(double *v, int n)
   return k;
 }
 
-static int build_actuator(Act *A, double h, CcxModel *m)
+static int build_actuator(Act *A, double h, double hr, CcxModel *m)
 {
   A->a = 0.5 * A->band_w / (0.5 * (A->band_r_in + A->band_r_out));
   /* radial grid */
   double rb[6] = {A->R_cav, A->band_r_in, A->band_r_out, A->R_out - A->ring_d, A->R_out};
   int nrb = sort_unique(rb, 5);
-  SA_CHECK(grid_build(&A->r, nrb, rb, h));
+  SA_CHECK(grid_build(&A->r, nrb, rb, hr));
   /* angular grid: [0, pi - a] and [pi - a, pi] at the band's mid radius, 2m cells, m even */
   double rm = 0.5 * (A->band_r_in + A->band_r_out);
   int n2 = (int)ceil(A->a * rm / h - 1e-9), n1 = (int)ceil((M_PI - A->a) * rm / h - 1e-9);
@@ -456,7 +456,7 @@ static int run(int argc, char **argv)
   Act A = {.R_cav = 6e-3, .R_out = 8.5e-3, .L_cav = 80e-3, .t_cap = 4e-3, .L_fix = 5e-3,
            .band_r_in = 7e-3, .band_r_out = 7.5e-3, .band_w = 10e-3, .rings = 1, .ring_n = 16,
            .ring_d = 0.5e-3, .ring_h = 0.5e-3, .ring_pitch = 5e-3, .ring_z0 = -2.5e-3};
-  double h = 0, L[3] = {1, 1, 1}, kratio = 500, kappa = 0;
+  double h = 0, hr = 0, L[3] = {1, 1, 1}, kratio = 500, kappa = 0;
   int N[3] = {2, 2, 2};
   const char *out = NULL;
   CcxModel m;
@@ -467,6 +467,7 @@ static int run(int argc, char **argv)
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
 #define OPT(name) (!strcmp(a, name) && v && ++i)
     if (OPT("--h")) h = atof(v);
+    else if (OPT("--hr")) hr = atof(v);
     else if (OPT("--out")) out = v;
     else if (OPT("--rings")) A.rings = atoi(v);
     else if (OPT("--kappa-ratio")) kratio = atof(v);
@@ -495,7 +496,7 @@ static int run(int argc, char **argv)
     SA_CHECK(build_box(L, N, &m));
   } else {
     SA_REQUIRE(h > 0, SA_ERR_INPUT, "need --h");
-    SA_CHECK(build_actuator(&A, h, &m));
+    SA_CHECK(build_actuator(&A, h, hr > 0 ? hr : h, &m));
     SA_CHECK(finish_actuator(&A, &m));
   }
   SA_CHECK(ccx_model_write(&m, out));

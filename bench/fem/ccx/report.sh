@@ -1,12 +1,12 @@
 #!/bin/sh
-# bench/fem/ccx/report.sh WORK OUT.md PRESSURE H_TET - tables of the CalculiX peer comparison from
+# bench/fem/ccx/report.sh WORK OUT.md PRESSURE H_TET H_HEX - tables of the CalculiX peer comparison from
 # the run files in WORK. The tables replace the block between the lines "<!-- tables:begin -->"
 # and "<!-- tables:end -->" of OUT.md (the prose around them is kept); a new OUT.md gets the block
 # only. Inputs (run.sh writes them): NAME.res (ccx_post: tip displacement, bending angle;
 # ccx increments/iterations), NAME.time (/usr/bin/time), NAME.ours (our solver's summary line),
 # NAME.export (mesh size), NAME.load (load average at the start of the run).
 set -eu
-WORK=$1 OUT=$2 PRESSURE=$3 H_TET=$4
+WORK=$1 OUT=$2 PRESSURE=$3 H_TET=$4 H_HEX=$5   # H_HEX: hex sizes h[:hr], coarse to fine
 ROOT=$(cd "$(dirname "$0")/../../.." && pwd)
 cd "$WORK"
 
@@ -24,7 +24,8 @@ rss() {
 }
 load() { awk '{for(i=1;i<=NF;i++) if($i=="average:") {gsub(",","",$(i+1)); print $(i+1)}}' "$1.load" 2>/dev/null || true; }
 dofs() {
-  if [ -f "$1.ours" ]; then ourscount "$1" dof; else sed -n 's/.*(\([0-9]*\) dof).*/\1/p' "$1.export" 2>/dev/null | head -1; fi
+  if [ -f "$1.ours" ]; then ourscount "$1" dof
+  else awk '/^\*NODE,/{n=1; next} /^\*/{n=0} n{c++} END{print 3 * c}' "$1.inp" 2>/dev/null; fi
 }
 # row LABEL NAME REF: a table row; REF is the run differences are taken against
 row() {
@@ -48,8 +49,9 @@ HDR='| run | dof | tip u_x [mm] | tip u_z [mm] | u_xz [mm] | angle [deg] | d u_x
 commit=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)
 dirty=$(git -C "$ROOT" status --porcelain 2>/dev/null | grep -q . && echo " (+ uncommitted work tree)" || true)
 ccxv=$(dpkg-query -W -f '${Version}' calculix-ccx 2>/dev/null || echo '?')
-hex_list=$(ls b_hex_*.res 2>/dev/null | sed 's/b_hex_\(.*\)\.res/\1/' | sort -r | tr '\n' ' ')
-hex_fine=$(echo $hex_list | awk '{print $NF}')
+hex_list=$(echo "$H_HEX" | sed 's/:/r/g')
+hex_fine=$(for h in $hex_list; do if [ -f b_hex_$h.res ]; then echo $h; fi; done | tail -1)
+hexlab() { echo "$1" | sed 's/r\(.*\)/, radial \1/'; }
 tmp=$OUT.tmp
 {
   echo "<!-- tables:begin -->"
@@ -80,19 +82,19 @@ tmp=$OUT.tmp
   row "ours, tet10 mixed" a_ours a_tet
   row "ccx C3D10 (same mesh)" a_tet a_tet
   for h in $(ls a_hex_*.res 2>/dev/null | sed 's/a_hex_\(.*\)\.res/\1/' | sort -r); do
-    row "ccx C3D20R hex, h = $h (half model)" a_hex_$h a_tet
+    row "ccx C3D20R hex, h = $(hexlab $h) (half model)" a_hex_$h a_tet
   done
   echo
   echo "### (b) Near-incompressible reference K/mu = 500"
   echo
-  echo "Reference row: ccx C3D20R on the finest structured hex half model (h = $hex_fine)."
+  echo "Reference row: ccx C3D20R on the finest structured hex half model (h = $(hexlab $hex_fine))."
   echo
   echo "$HDR"
   for h in $(ls b_ours_*.res 2>/dev/null | sed 's/b_ours_\(.*\)\.res/\1/' | sort -r); do
     row "ours, tet10 mixed, h = $h" b_ours_$h b_hex_$hex_fine
   done
   [ -f b_mesh_$H_TET.res ] && row "ccx C3D10, h = $H_TET (locks)" b_mesh_$H_TET b_hex_$hex_fine
-  for h in $hex_list; do row "ccx C3D20R hex, h = $h (half model)" b_hex_$h b_hex_$hex_fine; done
+  for h in $hex_list; do row "ccx C3D20R hex, h = $(hexlab $h) (half model)" b_hex_$h b_hex_$hex_fine; done
   echo "<!-- tables:end -->"
 } > "$tmp"
 if [ -f "$OUT" ] && grep -q '^<!-- tables:begin -->' "$OUT" && grep -q '^<!-- tables:end -->' "$OUT"; then

@@ -25,7 +25,8 @@ WORK=${WORK:-$BUILD/bench/ccx_runs}
 PRESSURE=${PRESSURE:-30e3}
 H_TET=${H_TET:-3e-3}              # tet10 size shared by both codes (89.5k dof)
 H_TET_OURS=${H_TET_OURS:-"3e-3 4e-3"}   # our mesh-convergence series (b)
-H_HEX=${H_HEX:-"2e-3 1.5e-3"}     # C3D20R half-model sizes (33k, 58k dof)
+H_HEX=${H_HEX:-"2e-3 1.5e-3 1.5e-3:0.5e-3"}  # C3D20R half model, h[:radial h] (33k, 58k, 69k dof)
+H_HEX_A=${H_HEX_A:-2e-3}          # C3D20R cross-check of stage a
 GEO=$ROOT/meshes/actuator.geo
 WHAT=${1:-all}
 export OMP_NUM_THREADS=2 CCX_NPROC_EQUATION_SOLVER=2
@@ -84,10 +85,13 @@ tet_deck() { # NAME H KRATIO [extra]
   [ -f "$n.inp" ] || "$T/ccx_export" --geo "$GEO" --h "$h" --set rings=0 --kappa-ratio "$k" \
     --pressure "$PRESSURE" --inc0 0.25 --incmax 1 --out "$n" > "$n.export" 2>&1
 }
-hex_deck() { # NAME H KRATIO
-  [ -f "$1.inp" ] || "$T/ccx_hex" actuator --h "$2" --rings 0 --kappa-ratio "$3" \
+hex_deck() { # NAME H[:HR] KRATIO
+  [ -f "$1.inp" ] || "$T/ccx_hex" actuator --h "${2%%:*}" --hr "$(echo "$2" | sed 's/^[^:]*$/0/; s/.*://')" \
+    --rings 0 --kappa-ratio "$3" \
     --pressure "$PRESSURE" --inc0 0.25 --incmax 1 --out "$1" > "$1.export" 2>&1
 }
+
+tag() { echo "$1" | sed 's/:/r/'; }   # run-name tag of a hex size h[:hr]
 
 # ------------------------------------------------------------------------------ stages
 verify() {
@@ -107,7 +111,7 @@ stage_a() {
   cp a_tet.tip a_ours.tip
   ours_run a_ours --geo "$GEO" --h "$H_TET" --set rings=0 --kappa-ratio 5 --pressure "$PRESSURE"
   ccx_run a_tet
-  for h in $H_HEX; do hex_deck a_hex_$h "$h" 5; ccx_run a_hex_$h; done
+  for h in $H_HEX_A; do hex_deck a_hex_$(tag $h) "$h" 5; ccx_run a_hex_$(tag $h); done
 }
 stage_b() {
   for h in $H_TET_OURS; do
@@ -115,7 +119,7 @@ stage_b() {
     cp b_mesh_$h.tip b_ours_$h.tip
     ours_run b_ours_$h --geo "$GEO" --h "$h" --set rings=0 --kappa-ratio 500 --pressure "$PRESSURE"
   done
-  for h in $H_HEX; do hex_deck b_hex_$h "$h" 500; ccx_run b_hex_$h; done
+  for h in $H_HEX; do hex_deck b_hex_$(tag $h) "$h" 500; ccx_run b_hex_$(tag $h); done
   tet_deck b_mesh_$H_TET "$H_TET" 500
   ccx_run b_mesh_$H_TET
 }
@@ -129,4 +133,4 @@ case $WHAT in
   *) echo "usage: run.sh [verify|a|b|all|report]"; exit 1 ;;
 esac
 [ "$WHAT" = all ] || [ "$WHAT" = report ] || exit 0
-sh "$ROOT/bench/fem/ccx/report.sh" "$WORK" "$ROOT/docs/calculix.md" "$PRESSURE" "$H_TET"
+sh "$ROOT/bench/fem/ccx/report.sh" "$WORK" "$ROOT/docs/calculix.md" "$PRESSURE" "$H_TET" "$H_HEX"
