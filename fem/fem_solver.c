@@ -49,7 +49,6 @@ struct FemSolver {
   double *u, *x, *v, *acc;       /* current */
   double *u_last, *v_last, *a_last, *u_prev; /* last converged substep, and the one before */
   double p, p_last, p_prev, V, V_ref;
-  double dl_prev;                /* increment that led from u_prev to u_last */
   double time;
 
   /* loads: committed (ramp start) and target */
@@ -62,8 +61,8 @@ struct FemSolver {
   double *R, *da, *db, *du, *rhs, *qf, *gf; /* nfree */
   double *u_it;                          /* last accepted Newton iterate (ndof) */
   double p_it, V_goal, V_last, V_prev;
-  double path_last, path_prev, lam_total; /* predictor path coordinate */
-  int have_prev;
+  double lam_total;                      /* ramp parameters completed since creation */
+  int step_count;                        /* substeps attempted since creation (log numbering) */
   double dl_keep;                        /* increment carried over to the next ramp */
   double slope0;                         /* first measured dp/dV (stiffness reference) */
   int fail_not_pd;                       /* not positive definite seen since last convergence */
@@ -83,7 +82,7 @@ struct FemSolver {
 FemSolverParams fem_solver_params_default(void) {
   FemSolverParams p = {
       .rtol = 1e-8, .atol = 1e-14, .utol = 1e-11, .vtol = 1e-10, .max_iter = 25, .line_search = 1,
-      .dl_init = 1.0, .dl_min = 1e-4, .dl_max = 1.0, .easy_iter = 6, .grow = 1.5, .cut = 0.5,
+      .dl_init = 1.0, .dl_min = 1e-4, .dl_max = 1.0, .easy_iter = 5, .grow = 1.5, .cut = 0.5,
       .threads = 2, .linsolver = FEM_LINSOLVER_AUTO, .sym_tol = 1e-9, .hht_alpha = -0.05,
       .mass_damping = 0.0, .ls_growth = 1e3, .max_stall = 6};
   return p;
@@ -721,8 +720,7 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
   const int nf = s->nfree;
   int ls = 0, it = 0, stall = 0;
   double r_prev = -1, r_first = -1, merit_prev = INFINITY, step_len = 1.0, dp = 0.0, gb = 0.0;
-  double du_norm = 0.0, qnorm = 0.0, Pi_prev = 0.0, slope0 = 0.0;
-  int bad_energy = 0, energy_ok = 0, use_energy = !vol && !sk->dynamic && s->prm.line_search == 1;
+  double du_norm = 0.0, qnorm = 0.0;
   *iters = 0;
   for (;;) {
     if (sk->dynamic) newmark_update(s, sk);
@@ -737,31 +735,13 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
       if (vol && gb != 0.0) merit += qnorm * fabs(c) / fabs(gb);
     }
     int bad = rc != 0 || !isfinite(rnorm);
-    /* Energy (Armijo) test for load control: the total potential
-     * Pi = sum Pi_e - p V - f_dead.u is what Newton minimises for a hyperelastic solid with a
-     * conservative pressure (rim fixed or closed); unlike |R| it is not inflated by kappa times
-     * the second-order volume error of a full step. Applied while the direction is a descent
-     * direction (slope < 0, tangent positive definite). */
-    double Pi = 0.0;
-    if (rc == 0 && use_energy) {
-      Pi = s->energy - s->p * s->V - dot(s->fdead, s->u, s->ndof);
-      if (it > 0 && energy_ok && slope0 < 0 &&
-          Pi > Pi_prev + 1e-4 * step_len * slope0 + 1e-12 * fabs(Pi_prev))
-        bad_energy = 1;
-    }
     /* Backtrack on inverted elements / non-finite residuals, and on a residual blow-up by
      * more than ls_growth. Not on any increase: for a nearly incompressible solid the full
      * Newton step changes the volume to second order and kappa times that makes the residual
      * norm jump although the next iterations converge quadratically (docs/fem.md). */
     if (it > 0 && s->prm.line_search && ls < 6 &&
-        (bad || bad_energy || merit > s->prm.ls_growth * merit_prev)) {
-      double snew = 0.5 * step_len;
-      if (bad_energy && !bad) { /* minimiser of the quadratic through Pi(0), Pi'(0), Pi(s) */
-        double den = 2.0 * (Pi - Pi_prev - slope0 * step_len);
-        if (den > 0) snew = fmin(0.5 * step_len, fmax(0.1 * step_len, -slope0 * step_len * step_len / den));
-      }
-      bad_energy = 0;
-      step_len = snew;
+        (bad || merit > s->prm.ls_growth * merit_prev)) {
+      step_len *= 0.5;
       ls++;
       for (int d = 0; d < s->ndof; d++)
         if (s->eq[d] >= 0) s->u[d] = s->u_it[d] + step_len * s->du[s->eq[d]];
@@ -840,13 +820,6 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
       memcpy(s->du, s->da, (size_t)nf * sizeof *s->du);
     }
     du_norm = nrm2(s->du, nf);
-    if (use_energy) {
-      Pi_prev = s->energy - s->p * s->V - dot(s->fdead, s->u, s->ndof);
-      slope0 = dot(s->R, s->du, nf);
-      /* only with a symmetric positive definite tangent (a potential exists, du descends) and
-       * away from convergence (near it, Pi changes at round-off level) */
-      energy_ok = s->last_sym && rnorm > 1e-4 * fref;
-    }
     memcpy(s->u_it, s->u, (size_t)s->ndof * sizeof *s->u);
     s->p_it = s->p;
     merit_prev = merit;
@@ -863,12 +836,6 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
 
 /* ------------------------------------------------------------------ load stepping */
 
-static double path_coord(const FemSolver *s, double lam) {
-  if (s->control == FEM_CONTROL_VOLUME) return s->V_c + lam * (s->V_t - s->V_c);
-  if (s->npf > 0 && s->p_t != s->p_c) return s->p_c + lam * (s->p_t - s->p_c);
-  return s->lam_total + lam;
-}
-
 static void restore_last(FemSolver *s) {
   memcpy(s->u, s->u_last, (size_t)s->ndof * sizeof *s->u);
   memcpy(s->v, s->v_last, (size_t)s->ndof * sizeof *s->v);
@@ -877,7 +844,7 @@ static void restore_last(FemSolver *s) {
   set_x(s);
 }
 
-static void commit_substep(FemSolver *s, double path, double dt) {
+static void commit_substep(FemSolver *s, double dt) {
   memcpy(s->u_prev, s->u_last, (size_t)s->ndof * sizeof *s->u);
   memcpy(s->u_last, s->u, (size_t)s->ndof * sizeof *s->u);
   memcpy(s->v_last, s->v, (size_t)s->ndof * sizeof *s->v);
@@ -889,9 +856,6 @@ static void commit_substep(FemSolver *s, double path, double dt) {
   s->p_last = s->p;
   s->V_prev = s->V_last;
   s->V_last = s->V;
-  s->path_prev = s->path_last;
-  s->path_last = path;
-  s->have_prev = 1;
   double *h = s->hist_c;
   s->hist_c = s->hist_t;
   s->hist_t = h;
@@ -939,7 +903,6 @@ static int ramp(FemSolver *s, int dynamic, double dt_total) {
   SA_REQUIRE(!dynamic || s->control == FEM_CONTROL_LOAD, SA_ERR_INPUT,
              "implicit dynamics supports load control only");
   memset(&s->rep, 0, sizeof s->rep);
-  static int global_step = 0;
   double lam = 0.0, dl = s->dl_keep > 0 ? s->dl_keep : s->prm.dl_init;
   s->fail_not_pd = 0;
   while (lam < 1.0 - 1e-12) {
@@ -947,12 +910,10 @@ static int ramp(FemSolver *s, int dynamic, double dt_total) {
     if (dl > 1.0 - lam || 1.0 - lam - dl < 1e-9) dl = 1.0 - lam;
     double lam_b = lam + dl;
     apply_loads(s, lam_b);
-    double path_b = path_coord(s, lam_b);
     /* No extrapolation predictor: for a nearly incompressible solid a linearly extrapolated
      * displacement changes element volumes to second order and kappa times that gives a far
      * worse start than the last converged state (measured: residual x 600). The first Newton
      * iteration from the converged state is the tangent predictor. */
-    int use_pred = 0;
     StepKind sk = {0};
     if (dynamic) {
       sk.dynamic = 1;
@@ -962,25 +923,18 @@ static int ramp(FemSolver *s, int dynamic, double dt_total) {
       sk.gamma = 0.5 - sk.alpha;
     }
     int iters = 0;
-    global_step++;
+    s->step_count++;
     s->skip_chol = 0;
-    int rc = newton(s, &sk, global_step, &iters);
+    int rc = newton(s, &sk, s->step_count, &iters);
     s->rep.newton_iters += iters;
-    if (rc > 0 && use_pred) { /* retry once from the last converged state */
-      sa_error_clear();
-      restore_last(s);
-      apply_loads(s, lam_b);
-      rc = newton(s, &sk, global_step, &iters);
-      s->rep.newton_iters += iters;
-    }
     s->rep.last_dl = dl;
     if (rc == 0) {
-      commit_substep(s, path_b, sk.dt);
+      commit_substep(s, sk.dt);
       lam = lam_b;
       s->rep.substeps++;
       s->rep.lambda = lam;
       sa_log(SA_LOG_DEBUG, "fem", "step %d converged: lambda %.4f (dl %.3g), %d iterations, "
-             "p %.6g Pa, V %.6g m^3", global_step, lam, dl, iters, s->p, s->V);
+             "p %.6g Pa, V %.6g m^3", s->step_count, lam, dl, iters, s->p, s->V);
       dl = dl_try; /* a cropped last increment does not shrink the next ramp's */
       if (iters <= s->prm.easy_iter) dl = fmin(dl * s->prm.grow, s->prm.dl_max);
       s->dl_keep = dl;
@@ -1000,7 +954,7 @@ static int ramp(FemSolver *s, int dynamic, double dt_total) {
     s->rep.cuts++;
     dl *= s->prm.cut;
     s->dl_keep = dl;
-    sa_log(SA_LOG_INFO, "fem", "step %d failed (%s): increment cut to %.3g", global_step,
+    sa_log(SA_LOG_INFO, "fem", "step %d failed (%s): increment cut to %.3g", s->step_count,
            s->last_fail, dl);
     if (dl < s->prm.dl_min) {
       apply_loads(s, lam);

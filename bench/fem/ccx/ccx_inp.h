@@ -10,7 +10,7 @@
  *             displacement and bending angle are computed with one definition for every mesh.
  *
  * CalculiX conventions (checked against ccx's own face tables, e.g. removeface.f: ifacet/ifaceq,
- * and verified on analytic cases by bench/fem/ccx/verify.sh):
+ * and verified on analytic cases by bench/fem/ccx/run.sh verify):
  *  - C3D10: corners 1-4 (positive volume: (x2-x1) x (x3-x1) . (x4-x1) > 0), then the mid-nodes
  *    5:(1,2) 6:(2,3) 7:(3,1) 8:(1,4) 9:(2,4) 10:(3,4) -- the same order as VTK's tet10.
  *    Faces: F1 = {1,2,3}, F2 = {1,2,4}, F3 = {2,3,4}, F4 = {1,3,4}.

@@ -8,7 +8,7 @@
  * prints one summary line:
  *   ours: nodes N dof N elems N sig S substeps N cuts N newton N setup_s T solve_s T
  *         assemble_s T factor_s T n_chol N n_lu N angle_deg A
- * (--verbose: the solver's INFO log, one line per substep, on stderr)
+ * (--verbose: the solver's INFO log, one line per substep, on stderr; --debug: every Newton step)
  *
  * usage: ccx_ours --geo FILE --h H --out BASE [--set NAME=VALUE]... [--kappa-ratio R]
  *          [--c10 ..] [--c20 ..] [--c30 ..] [--pressure P] [--threads N] [--rtol R]
@@ -52,6 +52,7 @@ static int run(int argc, char **argv)
     else if (OPT("--dl-init")) prm.dl_init = atof(v);
     else if (OPT("--dl-max")) prm.dl_max = atof(v);
     else if (!strcmp(a, "--verbose")) sa_log_set_level(SA_LOG_INFO);
+    else if (!strcmp(a, "--debug")) sa_log_set_level(SA_LOG_DEBUG);
     else if (OPT("--set")) {
       const char *eq = strchr(v, '=');
       SA_REQUIRE(nparams < MAX_OPTS && eq && eq - v < 63, SA_ERR_INPUT, "bad --set %s", v);

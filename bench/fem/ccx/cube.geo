@@ -1,4 +1,4 @@
-// cube.geo - verification block for the CalculiX exporter (bench/fem/ccx/verify.sh): a box
+// cube.geo - verification block for the CalculiX exporter (bench/fem/ccx/run.sh verify): a box
 // [0,Lx] x [0,Ly] x [0,Lz] with every face its own physical group, so rollers on x0, y0, z0 and a
 // pressure on top give homogeneous uniaxial stress (exact answer: ccx_post uniaxial).
 SetFactory("OpenCASCADE");

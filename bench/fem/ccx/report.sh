@@ -6,7 +6,7 @@
 # ccx increments/iterations), NAME.time (/usr/bin/time), NAME.ours (our solver's summary line),
 # NAME.export (mesh size), NAME.load (load average at the start of the run).
 set -eu
-WORK=$1 OUT=$2 PRESSURE=$3 H_TET=$4 H_HEX=$5   # H_HEX: hex sizes h[:hr], coarse to fine
+WORK=$1 OUT=$(cd "$(dirname "$2")" && pwd)/$(basename "$2") PRESSURE=$3 H_TET=$4 H_HEX=$5   # H_HEX: hex sizes h[:hr], coarse to fine
 ROOT=$(cd "$(dirname "$0")/../../.." && pwd)
 cd "$WORK"
 
@@ -90,9 +90,10 @@ tmp=$OUT.tmp
   echo "Reference row: ccx C3D20R on the finest structured hex half model (h = $(hexlab $hex_fine))."
   echo
   echo "$HDR"
-  for h in $(ls b_ours_*.res 2>/dev/null | sed 's/b_ours_\(.*\)\.res/\1/' | sort -r); do
+  for h in $(ls b_ours_[0-9]*.res 2>/dev/null | sed 's/b_ours_\(.*\)\.res/\1/' | sort -r); do
     row "ours, tet10 mixed, h = $h" b_ours_$h b_hex_$hex_fine
   done
+  [ -f b_ours_dl_$H_TET.res ] && row "ours, h = $H_TET, first increment 0.25" b_ours_dl_$H_TET b_hex_$hex_fine
   [ -f b_mesh_$H_TET.res ] && row "ccx C3D10, h = $H_TET (locks)" b_mesh_$H_TET b_hex_$hex_fine
   for h in $hex_list; do row "ccx C3D20R hex, h = $(hexlab $h) (half model)" b_hex_$h b_hex_$hex_fine; done
   echo "<!-- tables:end -->"

@@ -119,6 +119,10 @@ stage_b() {
     cp b_mesh_$h.tip b_ours_$h.tip
     ours_run b_ours_$h --geo "$GEO" --h "$h" --set rings=0 --kappa-ratio 500 --pressure "$PRESSURE"
   done
+  # ours with ccx's first increment (0.25 of the load) instead of the whole load
+  cp b_mesh_$H_TET.tip b_ours_dl_$H_TET.tip
+  ours_run b_ours_dl_$H_TET --geo "$GEO" --h "$H_TET" --set rings=0 --kappa-ratio 500 \
+    --pressure "$PRESSURE" --dl-init 0.25
   for h in $H_HEX; do hex_deck b_hex_$(tag $h) "$h" 500; ccx_run b_hex_$(tag $h); done
   tet_deck b_mesh_$H_TET "$H_TET" 500
   ccx_run b_mesh_$H_TET

@@ -204,7 +204,7 @@ int smesh_build(int nblocks, const SmeshBlock *blocks, int order, double merge_t
   SA_CALLOC(m->surfaces, nsurf > 0 ? nsurf : 1);
   for (int q = 0; q < nsurf; q++) {
     FemSurface *S = &m->surfaces[q];
-    snprintf(S->name, sizeof S->name, "%s", surf[q].name);
+    snprintf(S->name, sizeof S->name, "%.63s", surf[q].name);
     S->nfaces = surf[q].nfaces;
     S->nfn = nfn;
     S->faces = surf[q].faces;
