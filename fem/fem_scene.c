@@ -59,8 +59,8 @@ typedef struct {
 
 #define P(f) offsetof(FemMeshParams, f)
 static const SaParam mesh_params[] = {
-    {"geo", SA_PARAM_FILE, P(geo), "-", "../meshes/actuator.geo", 0, 0, 0, NULL,
-     "Gmsh .geo source of the actuator (relative to the case file)"},
+    {"geo", SA_PARAM_FILE, P(geo), "-", "meshes/actuator.geo", 0, 0, 0, NULL,
+     "Gmsh .geo source of the actuator (relative to the case file, then to the softact source tree)"},
     {"h", SA_PARAM_REAL, P(h), "m", "4e-3", 1e-4, 0.05, 0, NULL,
      "target element size (mesh refinement is this one key)"},
     {"h_band", SA_PARAM_REAL, P(h_band), "m", "2e-3", 1e-4, 0.05, 0, NULL,

@@ -24,6 +24,8 @@ TABLE = [
     ("bad_set_syntax", HMSA, ["hmsa_eta"], ["--set", "section.key=value"]),
     ("bad_run_key", "[run]\nvtk_format = xml\n" + HMSA, [], [":2:", "vtk_format", "expected one of binary|ascii"]),
     ("two_scenes", HMSA + "[mesh]\n", [], ["describes one scene"]),
+    ("missing_mesh_file", "[mesh]\ngeo = no_such_mesh.geo\n", [], [":2:", "geo", "no_such_mesh.geo", "not found"]),
+    ("bad_mesh_size", "[mesh]\nh = 0\n", [], [":2:", "h", "expected a real number in"]),
 ]
 
 def write_case(path, text, name):
