@@ -1,5 +1,11 @@
 /* fem_linsolve.c - CHOLMOD supernodal Cholesky (METIS ordering, analysed once) with an UMFPACK
- * LU fallback for indefinite or unsymmetric tangents. See fem_linsolve.h. */
+ * LU fallback for indefinite or unsymmetric tangents. See fem_linsolve.h.
+ * UMFPACK is called through its 64-bit-integer interface (umfpack_dl_*): the 32-bit one
+ * (umfpack_di_*) addresses its work memory with int and is guaranteed to fail with status -1
+ * (out of memory) once a factorisation needs more than ~2 GB, whatever the RAM (UMFPACK user
+ * guide). Measured on the actuator: 106k dofs need 0.94 GB (nnz(L+U) 1.03e8), so the int
+ * interface would hit its ceiling at roughly twice that size. The pattern is copied to
+ * SuiteSparse_long arrays on first use (8 bytes per entry, 65 MB at 106k dofs). */
 #include "fem_linsolve.h"
 
 #include <cholmod.h>
@@ -24,7 +30,8 @@ struct FemLinSolver {
   cholmod_dense *X, *Y, *E;   /* solve2 workspaces, allocated on first solve, then reused */
   void *usym, *unum;          /* UMFPACK symbolic (once) and numeric objects */
   double uctrl[UMFPACK_CONTROL], uinfo[UMFPACK_INFO];
-  int *uwi;
+  SuiteSparse_long *lp, *li;  /* 64-bit copy of the pattern (first LU) */
+  SuiteSparse_long *uwi;
   double *uw;
   const double *values;       /* values of the current factor */
   FemLinInfo info;
@@ -114,7 +121,7 @@ int fem_linsolve_create(int n, const int *colptr, const int *rowind, int nthread
   s->info.nnz_l = s->cc.lnz;
   s->info.flops_chol = s->cc.fl;
 
-  umfpack_di_defaults(s->uctrl);
+  umfpack_dl_defaults(s->uctrl);
   s->uwi = malloc((size_t)n * sizeof *s->uwi);
   s->uw = malloc((size_t)5 * n * sizeof *s->uw);
   if (!s->uwi || !s->uw) {
@@ -126,22 +133,39 @@ int fem_linsolve_create(int n, const int *colptr, const int *rowind, int nthread
 }
 
 static int umf_factorize(FemLinSolver *s, const double *values) {
-  int st;
+  SuiteSparse_long st;
+  if (!s->lp) {
+    int nnz = s->colptr[s->n];
+    s->lp = malloc((size_t)(s->n + 1) * sizeof *s->lp);
+    s->li = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *s->li);
+    if (!s->lp || !s->li) {
+      free(s->lp);
+      free(s->li);
+      s->lp = s->li = NULL;
+      return SA_ERROR(SA_ERR_MEMORY, "cannot allocate the 64-bit pattern (%d entries)", nnz);
+    }
+    for (int j = 0; j <= s->n; j++) s->lp[j] = s->colptr[j];
+    for (int k = 0; k < nnz; k++) s->li[k] = s->rowind[k];
+  }
   if (!s->usym) {
     double t0 = sa_time_now();
-    st = umfpack_di_symbolic(s->n, s->n, s->colptr, s->rowind, values, &s->usym, s->uctrl,
-                             s->uinfo);
+    st = umfpack_dl_symbolic(s->n, s->n, s->lp, s->li, values, &s->usym, s->uctrl, s->uinfo);
     sa_timing_add("fem symbolic", sa_time_now() - t0);
-    SA_REQUIRE(st == UMFPACK_OK, SA_ERR_LIBRARY, "umfpack_di_symbolic failed (status %d)", st);
+    SA_REQUIRE(st == UMFPACK_OK, SA_ERR_LIBRARY, "umfpack_dl_symbolic failed (status %ld)",
+               (long)st);
   }
-  if (s->unum) umfpack_di_free_numeric(&s->unum);
-  st = umfpack_di_numeric(s->colptr, s->rowind, values, s->usym, &s->unum, s->uctrl, s->uinfo);
+  if (s->unum) umfpack_dl_free_numeric(&s->unum);
+  st = umfpack_dl_numeric(s->lp, s->li, values, s->usym, &s->unum, s->uctrl, s->uinfo);
   if (st == UMFPACK_WARNING_singular_matrix) {
-    umfpack_di_free_numeric(&s->unum);
+    umfpack_dl_free_numeric(&s->unum);
     return SA_ERROR(SA_ERR_NOT_SPD, "UMFPACK: the tangent is singular (n = %d)", s->n);
   }
-  SA_REQUIRE(st == UMFPACK_OK, SA_ERR_LIBRARY, "umfpack_di_numeric failed (status %d)", st);
+  SA_REQUIRE(st == UMFPACK_OK, SA_ERR_LIBRARY,
+             "umfpack_dl_numeric failed (status %ld%s, n = %d)", (long)st,
+             st == UMFPACK_ERROR_out_of_memory ? ": out of memory" : "", s->n);
   s->info.nnz_lu = s->uinfo[UMFPACK_LNZ] + s->uinfo[UMFPACK_UNZ];
+  sa_log(SA_LOG_DEBUG, "fem", "UMFPACK LU (n = %d): nnz(L+U) %.4g, peak memory %.0f MB",
+         s->n, s->info.nnz_lu, s->uinfo[UMFPACK_PEAK_MEMORY] * s->uinfo[UMFPACK_SIZE_OF_UNIT] / 1e6);
   s->info.kind = FEM_LIN_UMFPACK;
   s->info.n_umf++;
   return 0;
@@ -179,10 +203,10 @@ int fem_linsolve_solve(FemLinSolver *s, const double *b, double *x) {
     memcpy(x, s->X->x, (size_t)s->n * sizeof *x);
   } else {
     SA_REQUIRE(s->unum, SA_ERR_INTERNAL, "solve without a factorisation");
-    int st = umfpack_di_wsolve(UMFPACK_A, s->colptr, s->rowind, s->values, x, b, s->unum,
-                               s->uctrl, s->uinfo, s->uwi, s->uw);
+    SuiteSparse_long st = umfpack_dl_wsolve(UMFPACK_A, s->lp, s->li, s->values, x, b, s->unum,
+                                            s->uctrl, s->uinfo, s->uwi, s->uw);
     SA_REQUIRE(st == UMFPACK_OK || st == UMFPACK_WARNING_singular_matrix, SA_ERR_LIBRARY,
-               "umfpack_di_wsolve failed (status %d)", st);
+               "umfpack_dl_wsolve failed (status %ld)", (long)st);
   }
   sa_timing_add("fem solve", sa_time_now() - t0);
   return 0;
@@ -211,8 +235,10 @@ void fem_linsolve_destroy(FemLinSolver **ps) {
   if (s->Y) cholmod_free_dense(&s->Y, &s->cc);
   if (s->E) cholmod_free_dense(&s->E, &s->cc);
   cholmod_finish(&s->cc);
-  if (s->unum) umfpack_di_free_numeric(&s->unum);
-  if (s->usym) umfpack_di_free_symbolic(&s->usym);
+  if (s->unum) umfpack_dl_free_numeric(&s->unum);
+  if (s->usym) umfpack_dl_free_symbolic(&s->usym);
+  free(s->lp);
+  free(s->li);
   free(s->uwi);
   free(s->uw);
   free(s->tmap);

@@ -9,7 +9,9 @@
  *    fem_linsolve_create; every factorisation reuses it. CHOLMOD reads the lower triangle only.
  *  - Fallback (stated in the log by the caller via FemLinInfo): when CHOLMOD reports the matrix
  *    is not positive definite, or the caller says it is unsymmetric, UMFPACK LU on the full
- *    matrix. Its symbolic analysis is done on first use and then reused as well.
+ *    matrix (64-bit interface umfpack_dl_*: the int one runs out of its addressable work memory
+ *    above ~2 GB). Its symbolic analysis is done on first use and then reused as well. Every
+ *    factorise call with symmetric = 1 tries CHOLMOD first, whatever the previous call used.
  *
  * No allocation happens in fem_linsolve_solve after the first call (CHOLMOD solve2 workspaces
  * and UMFPACK wsolve workspaces are kept). UMFPACK's numeric factorisation does allocate (the

@@ -12,7 +12,8 @@
  *
  * usage: ccx_ours --geo FILE --h H --out BASE [--set NAME=VALUE]... [--kappa-ratio R]
  *          [--c10 ..] [--c20 ..] [--c30 ..] [--pressure P] [--threads N] [--rtol R]
- *          [--dl-init F] [--dl-max F] [--stiff REGION:E:NU]... */
+ *          [--dl-init F] [--dl-max F] [--stiff REGION:E:NU]... [--mix-alpha A]
+ * --mix-alpha: FemMaterial.mix_alpha of the silicone (0 = default, < 0 = pure P2-P0). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,7 +31,7 @@ double ccx_mesh_signature(const FemMesh *m);
 static int run(int argc, char **argv)
 {
   const char *geo = NULL, *out = NULL;
-  double h = 0, kratio = 500, c10 = 0.11e6, c20 = 0.02e6, c30 = 0, P = 10e3;
+  double h = 0, kratio = 500, mix_alpha = 0, c10 = 0.11e6, c20 = 0.02e6, c30 = 0, P = 10e3;
   int nparams = 0, nstiff = 0;
   FemGeoParam params[MAX_OPTS];
   char pnames[MAX_OPTS][64], snames[MAX_OPTS][64];
@@ -43,6 +44,7 @@ static int run(int argc, char **argv)
     else if (OPT("--out")) out = v;
     else if (OPT("--h")) h = atof(v);
     else if (OPT("--kappa-ratio")) kratio = atof(v);
+    else if (OPT("--mix-alpha")) mix_alpha = atof(v);
     else if (OPT("--c10")) c10 = atof(v);
     else if (OPT("--c20")) c20 = atof(v);
     else if (OPT("--c30")) c30 = atof(v);
@@ -93,6 +95,7 @@ static int run(int argc, char **argv)
       mats[r].kind = FEM_MAT_YEOH;
       mats[r].c10 = c10, mats[r].c20 = c20, mats[r].c30 = c30;
       mats[r].kappa = kratio * 2.0 * c10;
+      mats[r].mix_alpha = mix_alpha; /* 0 = FEM_MAT_MIX_ALPHA_DEFAULT, < 0 = pure P2-P0 */
       mats[r].rho = 1130;
     } else
       rc = SA_ERROR(SA_ERR_INPUT, "region %s has no material", name);

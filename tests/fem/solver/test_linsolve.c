@@ -5,7 +5,8 @@
  * and with a first-order convection term c (unsymmetric). The exact solution x* is chosen and
  * b = A x* built by a matrix-vector product, so the reference is independent of the solvers.
  * Checks: CHOLMOD used for the SPD case; fallback to UMFPACK flagged for the indefinite case;
- * UMFPACK for the unsymmetric case; |x - x*|_inf <= 1e-10 (condition number of these matrices
+ * UMFPACK for the unsymmetric case; CHOLMOD again for an SPD matrix after an indefinite one on
+ * the same handle (the per-iteration policy of fem_solver); |x - x*|_inf <= 1e-10 (condition number of these matrices
  * is < 1e4, so double precision direct solvers give ~1e-12); asymmetry measure 0 / c-scaled. */
 #include <math.h>
 #include <stdio.h>
@@ -96,6 +97,51 @@ static int run(const char *name, double shift, double conv, int sym, FemLinKind 
   return fails;
 }
 
+/* Policy: CHOLMOD is tried at every symmetric factorisation, so after an indefinite matrix
+ * (UMFPACK fallback) an SPD one on the same handle is factorised by CHOLMOD again (its symbolic
+ * factor must have survived the failed attempt), and back to UMFPACK again; every solve exact. */
+static int alternate(void) {
+  static double v_spd[5 * N], v_ind[5 * N];
+  build(0.5, 0.0);
+  for (int k = 0; k < colptr[N]; k++) v_ind[k] = val[k];
+  build(0.0, 0.0);
+  for (int k = 0; k < colptr[N]; k++) v_spd[k] = val[k];
+  FemLinSolver *s;
+  if (fem_linsolve_create(N, colptr, rowind, 1, &s)) {
+    sa_error_print();
+    return 1;
+  }
+  int fails = 0;
+  const double *seq[4] = {v_ind, v_spd, v_ind, v_spd};
+  FemLinKind want[4] = {FEM_LIN_UMFPACK, FEM_LIN_CHOLMOD, FEM_LIN_UMFPACK, FEM_LIN_CHOLMOD};
+  for (int r = 0; r < 4; r++) {
+    double xs[N], b[N], x[N], err = 0;
+    for (int k = 0; k < colptr[N]; k++) val[k] = seq[r][k];
+    for (int i = 0; i < N; i++) xs[i] = cos(0.2 * i + r);
+    matvec(xs, b);
+    if (fem_linsolve_factorize(s, seq[r], 1) || fem_linsolve_solve(s, b, x)) {
+      sa_error_print();
+      fem_linsolve_destroy(&s);
+      return 1;
+    }
+    for (int i = 0; i < N; i++) err = fmax(err, fabs(x[i] - xs[i]));
+    FemLinInfo info;
+    fem_linsolve_info(s, &info);
+    if (info.kind != want[r] || err > 1e-10) {
+      fprintf(stderr, "alternate %d: kind %d (expected %d), |x - x*| = %g\n", r, info.kind,
+              want[r], err);
+      fails++;
+    }
+    if (r == 3 && (info.n_chol != 2 || info.n_umf != 2)) {
+      fprintf(stderr, "alternate: %d Cholesky, %d LU (expected 2, 2)\n", info.n_chol,
+              info.n_umf);
+      fails++;
+    }
+  }
+  fem_linsolve_destroy(&s);
+  return fails;
+}
+
 int main(void) {
   int fails = 0;
   fails += run("spd", 0.0, 0.0, 1, FEM_LIN_CHOLMOD, 0);
@@ -103,5 +149,6 @@ int main(void) {
    * several eigenvalues negative; 0.5 is not an eigenvalue (nonsingular) */
   fails += run("indefinite", 0.5, 0.0, 1, FEM_LIN_UMFPACK, 1);
   fails += run("unsymmetric", 0.0, 0.3, 0, FEM_LIN_UMFPACK, 0);
+  fails += alternate();
   return fails ? 1 : 0;
 }
