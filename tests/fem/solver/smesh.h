@@ -19,6 +19,9 @@ typedef struct {
 } SmeshBlock;
 
 /* order 1 (tet4) or 2 (tet10); merge_tol: nodes closer than this are one node. */
+/* The slender bar 1 x 0.2 x 0.2 used by several tests (ctx unused). */
+void smesh_map_bar(const double xi[3], const void *ctx, double X[3]);
+
 int smesh_build(int nblocks, const SmeshBlock *blocks, int order, double merge_tol,
                 FemMesh **out);
 void smesh_free(FemMesh **m);

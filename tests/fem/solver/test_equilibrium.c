@@ -21,16 +21,9 @@
 #include "smesh.h"
 #include "tutil.h"
 
-static void map_box(const double xi[3], const void *ctx, double X[3]) {
-  (void)ctx;
-  X[0] = xi[0];
-  X[1] = 0.2 * xi[1];
-  X[2] = 0.2 * xi[2];
-}
-
 int main(void) {
   if (!getenv("SA_TEST_VERBOSE")) sa_log_set_level(SA_LOG_WARN);
-  SmeshBlock blk = {{10, 2, 2}, map_box, NULL, {"clamp", "end", "front", "back", "bottom", "top"}};
+  SmeshBlock blk = {{10, 2, 2}, smesh_map_bar, NULL, {"clamp", "end", "front", "back", "bottom", "top"}};
   FemMesh *m;
   TU_CHECK(smesh_build(1, &blk, 2, 1e-9, &m));
   FemMaterial mat = {.kind = FEM_MAT_NEOHOOKE, .c10 = 0.5, .kappa = 20, .rho = 1};
