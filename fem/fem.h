@@ -41,6 +41,14 @@ typedef enum {
 
 typedef enum { FEM_LINSOLVER_AUTO = 0, FEM_LINSOLVER_LU = 1 } FemLinSolverChoice;
 
+/* Tangent of the first Newton iteration of a substep (the predictor). */
+typedef enum {
+  FEM_PREDICT_NEW_LOAD = 0,    /* converged state with the new pressure's load stiffness (default) */
+  FEM_PREDICT_EQUILIBRIUM = 1, /* tangent at the converged state and its loads (Euler predictor) */
+  FEM_PREDICT_REUSE = 2        /* the last factors of the converged state when there are such
+                                * (no factorisation), else EQUILIBRIUM */
+} FemPredictor;
+
 typedef struct {
   double rtol;       /* residual norm relative to the internal-force norm (incl. reactions) */
   double atol;       /* absolute residual norm [N] */
@@ -61,6 +69,10 @@ typedef struct {
   double sym_tol;    /* tangent treated as symmetric when max|K-K^T|/max|K| <= sym_tol */
   double hht_alpha;  /* implicit dynamics: HHT alpha in [-1/3, 0] (0 = trapezoidal Newmark) */
   double mass_damping; /* Rayleigh mass-proportional damping coefficient [1/s] */
+  FemPredictor predictor; /* tangent of the first iteration of a substep */
+  double reuse_rate; /* modified Newton: after a step with fresh factors the next direction
+                      * reuses them, and keeps reusing while |R| falls by this factor per
+                      * iteration (0, the default = full Newton: fresh factors every iteration) */
 } FemSolverParams;
 
 FemSolverParams fem_solver_params_default(void);
@@ -84,6 +96,7 @@ typedef struct {
   double t_assemble, t_factor, t_solve, t_symbolic; /* seconds */
   int n_assemble, n_factor, n_solve;                /* calls (assembly incl. residual-only) */
   int n_chol, n_lu;
+  int n_reuse;              /* Newton directions from reused factors (incl. REUSE predictors) */
   int n_interface;          /* elements scattered serially after the threaded slabs */
   double asymmetry;         /* max|K-K^T|/max|K| of the last tangent checked */
 } FemSolverStats;

@@ -47,9 +47,9 @@ typedef struct {
 } FemLoadParams;
 
 typedef struct {
-  double rtol, dl_min;
+  double rtol, dl_min, reuse_rate;
   int max_iter, threads;
-  char linear_solver[SA_STR_MAX];
+  char linear_solver[SA_STR_MAX], predictor[SA_STR_MAX];
 } FemSolverCaseParams;
 
 typedef struct {
@@ -135,6 +135,13 @@ static const SaParam solver_params[] = {
      "assembly and BLAS threads (0 = the run's thread count)"},
     {"linear_solver", SA_PARAM_CHOICE, P(linear_solver), "-", "auto", 0, 0, 0, "auto|lu",
      "auto: CHOLMOD, UMFPACK LU when not positive definite/unsymmetric; lu: always UMFPACK"},
+    {"reuse_rate", SA_PARAM_REAL, P(reuse_rate), "-", "0", 0, 0.9, 0, NULL,
+     "reuse the factors while the residual norm falls by this factor per iteration "
+     "(0 = full Newton)"},
+    {"predictor", SA_PARAM_CHOICE, P(predictor), "-", "new_load", 0, 0, 0,
+     "new_load|equilibrium|reuse",
+     "first-iteration tangent of a substep: converged state with the new load's stiffness, "
+     "with its own load, or its last factors reused"},
 };
 #undef P
 #define P(f) offsetof(FemOutParams, f)
@@ -418,6 +425,10 @@ static int fem_run(void *scene, SaRun *run) {
   prm.dl_min = sc->solver.dl_min;
   prm.threads = sc->solver.threads > 0 ? sc->solver.threads : run->threads;
   prm.linsolver = !strcmp(sc->solver.linear_solver, "lu") ? FEM_LINSOLVER_LU : FEM_LINSOLVER_AUTO;
+  prm.reuse_rate = sc->solver.reuse_rate;
+  prm.predictor = !strcmp(sc->solver.predictor, "equilibrium") ? FEM_PREDICT_EQUILIBRIUM
+                  : !strcmp(sc->solver.predictor, "reuse")       ? FEM_PREDICT_REUSE
+                                                                 : FEM_PREDICT_NEW_LOAD;
   if (!rc) rc = fem_solver_create(m, mats, &prm, &o.s);
   if (!rc) rc = fem_solver_fix_surface(o.s, sc->load.fixed_surface, FEM_XYZ);
   if (!rc) rc = fem_solver_add_pressure_surface(o.s, sc->load.pressure_surface);
@@ -485,17 +496,18 @@ static int fem_run(void *scene, SaRun *run) {
               "final_volume_ratio = %.6f\n", fem_solver_pressure(o.s), o.angle,
               fem_solver_cavity_volume(o.s) / o.V0);
       fprintf(fp, "assemblies = %d\nassemble_s = %.3f\nfactorisations = %d\ncholesky = %d\n"
-              "lu = %d\nfactorise_s = %.3f\nsolves = %d\nsolve_s = %.3f\nsymbolic_s = %.3f\n"
-              "wall_s = %.3f\nstatus = %s\n", st.n_assemble, st.t_assemble, st.n_factor,
-              st.n_chol, st.n_lu, st.t_factor, st.n_solve, st.t_solve, st.t_symbolic,
-              sa_time_now() - t_start, rc_ramp ? "ramp stopped early" : "completed");
+              "lu = %d\nreused_factors = %d\nfactorise_s = %.3f\nsolves = %d\nsolve_s = %.3f\n"
+              "symbolic_s = %.3f\nwall_s = %.3f\nstatus = %s\n", st.n_assemble, st.t_assemble,
+              st.n_factor, st.n_chol, st.n_lu, st.n_reuse, st.t_factor, st.n_solve, st.t_solve,
+              st.t_symbolic, sa_time_now() - t_start, rc_ramp ? "ramp stopped early" : "completed");
       if (sa_file_commit(&f)) sa_error_clear();
     } else {
       sa_error_clear();
     }
     sa_log(SA_LOG_INFO, "fem", "Newton: %d assemblies %.2f s, %d factorisations (%d Cholesky, "
-           "%d LU) %.2f s, %d solves %.2f s", st.n_assemble, st.t_assemble, st.n_factor,
-           st.n_chol, st.n_lu, st.t_factor, st.n_solve, st.t_solve);
+           "%d LU) %.2f s, %d directions from reused factors, %d solves %.2f s", st.n_assemble,
+           st.t_assemble, st.n_factor, st.n_chol, st.n_lu, st.t_factor, st.n_reuse, st.n_solve,
+           st.t_solve);
   }
   if (o.csv) sa_csv_abort(&o.csv);
   fem_solver_destroy(&o.s);

@@ -78,6 +78,11 @@ struct FemSolver {
   int saw_not_pd; /* a factorisation in the current substep was not positive definite (the
                    * fallback is logged once per substep; CHOLMOD is still tried every time) */
   int lu_substep; /* LU factorisations in the current substep */
+  /* the factors held by lin are a tangent of the last converged state (its last Newton
+   * iteration), made for a substep of kind fact_kind: usable as the next predictor */
+  int fact_converged;
+  int fact_dynamic;
+  double fact_dt, fact_alpha;
 };
 
 FemSolverParams fem_solver_params_default(void) {
@@ -85,7 +90,8 @@ FemSolverParams fem_solver_params_default(void) {
       .rtol = 1e-8, .atol = 1e-14, .utol = 1e-11, .vtol = 1e-10, .max_iter = 25, .line_search = 1,
       .dl_init = 1.0, .dl_min = 1e-4, .dl_max = 1.0, .easy_iter = 5, .grow = 1.5, .cut = 0.5,
       .threads = 2, .linsolver = FEM_LINSOLVER_AUTO, .sym_tol = 1e-9, .hht_alpha = -0.05,
-      .mass_damping = 0.0, .ls_growth = 1e3, .max_stall = 6};
+      .mass_damping = 0.0, .ls_growth = 1e3, .max_stall = 6,
+      .predictor = FEM_PREDICT_NEW_LOAD, .reuse_rate = 0.0};
   return p;
 }
 
@@ -727,9 +733,27 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
   double r_prev = -1, r_first = -1, merit_prev = INFINITY, step_len = 1.0, dp = 0.0, gb = 0.0;
   double du_norm = 0.0, qnorm = 0.0;
   *iters = 0;
+  /* Predictor (it 0), FemPredictor: NEW_LOAD (default) factorises the converged state with the
+   * new pressure's load stiffness, K(u_n, p_n+1); EQUILIBRIUM uses K(u_n, p_n), the
+   * equilibrium path's tangent (on the actuator K(u_n, p_n+1) is indefinite above ~4 kPa of
+   * increment: no stress yet carries the extra pressure); REUSE takes the factors of the last
+   * iteration of the previous substep (no factorisation: meant for many small coupled
+   * solves). Measured on the default scene (docs/fem.md): NEW_LOAD needs the fewest
+   * factorisations and LU fallbacks, although its first tangent is often indefinite. */
+  int reuse = s->prm.predictor == FEM_PREDICT_REUSE && s->fact_converged &&
+              s->fact_dynamic == sk->dynamic && (!sk->dynamic || (s->fact_dt == sk->dt &&
+              s->fact_alpha == sk->alpha));
+  double p_pred = s->prm.predictor == FEM_PREDICT_NEW_LOAD ? s->p : s->p_last;
+  /* reuse_rate > 0 (modified Newton): a direction from fresh factors is followed by one that
+   * reuses them (assembly + triangular solves): for a nearly incompressible solid a full
+   * Newton step leaves a volumetric residual ~ kappa |grad du|^2 (|R| jumps x10-100) that one
+   * more solve with the same factors mostly removes. Reuse goes on while |R| falls by
+   * reuse_rate per iteration, else fresh factors. Off by default: on the default scene it
+   * saved a third of the factorisations but not time (docs/fem.md). */
+  int have_fact = reuse, fresh_last = 0, nfresh = 0;
   for (;;) {
     if (sk->dynamic) newmark_update(s, sk);
-    int rc = assemble(s, s->x, s->p, 1);
+    int rc = assemble(s, s->x, it == 0 ? p_pred : s->p, !(it == 0 && reuse));
     double fref = 0, rnorm = INFINITY, c = 0, merit = INFINITY;
     if (rc == 0) {
       rnorm = residual(s, sk, &fref);
@@ -764,11 +788,13 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
     double rate = r_prev > 0 ? rnorm / r_prev : 0.0;
     if (vol)
       sa_log(SA_LOG_DEBUG, "fem",
-             "step %d it %2d |R| %.3e |du| %.3e rate %.3f  p %.6g dV %.2e%s", step, it, rnorm,
-             du_norm, rate, s->p, c, ls ? "  (line search)" : "");
+             "step %d it %2d |R| %.3e |du| %.3e rate %.3f  p %.6g dV %.2e%s%s", step, it, rnorm,
+             du_norm, rate, s->p, c, ls ? "  (line search)" : "",
+             it > 0 && !fresh_last ? "  (reused factors)" : "");
     else
-      sa_log(SA_LOG_DEBUG, "fem", "step %d it %2d |R| %.3e |du| %.3e rate %.3f%s", step, it,
-             rnorm, du_norm, rate, ls ? "  (line search)" : "");
+      sa_log(SA_LOG_DEBUG, "fem", "step %d it %2d |R| %.3e |du| %.3e rate %.3f%s%s", step, it,
+             rnorm, du_norm, rate, ls ? "  (line search)" : "",
+             it > 0 && !fresh_last ? "  (reused factors)" : "");
     if (it <= 1) r_first = fmax(r_first, rnorm); /* it 0 may be ~0 under volume control */
     /* converged: residual below tolerance, or (round-off floor of a stiff, nearly
      * incompressible problem) the last update negligible against the displacement */
@@ -779,7 +805,7 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
       *iters = it;
       return 0;
     }
-    if (it >= s->prm.max_iter) {
+    if (nfresh >= s->prm.max_iter || it >= 4 * s->prm.max_iter) {
       *iters = it;
       return SA_ERROR(SA_ERR_NOT_CONVERGED, "no convergence in %d iterations (|R| %.3e, %.3e x "
                       "tolerance)", it, rnorm, rnorm / (s->prm.rtol * fref + s->prm.atol));
@@ -795,8 +821,15 @@ static int newton(FemSolver *s, const StepKind *sk, int step, int *iters) {
       return SA_ERROR(SA_ERR_NOT_CONVERGED, "Newton diverging (|R| grew from %.3e to %.3e)",
                       r_first, rnorm);
     }
-    /* new direction */
-    rc = factorize(s, sk);
+    /* new direction: fresh factors, or reuse (see above) */
+    int use_old = it == 0 ? reuse
+                          : (s->prm.reuse_rate > 0 && have_fact && ls == 0 &&
+                             (fresh_last || rate <= s->prm.reuse_rate));
+    rc = use_old ? 0 : factorize(s, sk);
+    if (!use_old) nfresh++;
+    else s->st.n_reuse++;
+    fresh_last = !use_old;
+    have_fact = rc == 0;
     if (rc) {
       *iters = it;
       return sa_error_push(rc, __func__, __FILE__, __LINE__);
@@ -946,6 +979,12 @@ static int ramp(FemSolver *s, int dynamic, double dt_total) {
     s->rep.last_dl = dl;
     if (rc == 0) {
       commit_substep(s, sk.dt);
+      if (iters > 0) { /* else the factors are still those of the state before */
+        s->fact_converged = 1;
+        s->fact_dynamic = sk.dynamic;
+        s->fact_dt = sk.dt;
+        s->fact_alpha = sk.alpha;
+      }
       lam = lam_b;
       s->rep.substeps++;
       s->rep.lambda = lam;
@@ -967,6 +1006,7 @@ static int ramp(FemSolver *s, int dynamic, double dt_total) {
     snprintf(s->last_fail, sizeof s->last_fail, "%s", sa_error_message());
     sa_error_clear();
     restore_last(s);
+    s->fact_converged = 0; /* the factors belong to a failed iterate */
     s->rep.cuts++;
     dl *= s->prm.cut;
     s->dl_keep = dl;

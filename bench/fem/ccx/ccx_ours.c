@@ -7,12 +7,13 @@
  * adaptive load stepping. Writes BASE.u (one "ux uy uz" line per node) for ccx_post field and
  * prints one summary line:
  *   ours: nodes N dof N elems N sig S substeps N cuts N newton N setup_s T solve_s T
- *         assemble_s T factor_s T n_chol N n_lu N angle_deg A
+ *         assemble_s T factor_s T n_chol N n_lu N n_reuse N angle_deg A
  * (--verbose: the solver's INFO log, one line per substep, on stderr; --debug: every Newton step)
  *
  * usage: ccx_ours --geo FILE --h H --out BASE [--set NAME=VALUE]... [--kappa-ratio R]
  *          [--c10 ..] [--c20 ..] [--c30 ..] [--pressure P] [--threads N] [--rtol R]
- *          [--dl-init F] [--dl-max F] [--stiff REGION:E:NU]... [--mix-alpha A]
+ *          [--dl-init F] [--dl-max F] [--stiff REGION:E:NU]... [--mix-alpha A] [--predictor 0|1|2 (new_load|equilibrium|reuse)]
+ *          [--reuse-rate R]
  * --mix-alpha: FemMaterial.mix_alpha of the silicone (0 = default, < 0 = pure P2-P0). */
 #include <math.h>
 #include <stdio.h>
@@ -53,6 +54,8 @@ static int run(int argc, char **argv)
     else if (OPT("--rtol")) prm.rtol = atof(v);
     else if (OPT("--dl-init")) prm.dl_init = atof(v);
     else if (OPT("--dl-max")) prm.dl_max = atof(v);
+    else if (OPT("--predictor")) prm.predictor = (FemPredictor)atoi(v);
+    else if (OPT("--reuse-rate")) prm.reuse_rate = atof(v);
     else if (!strcmp(a, "--verbose")) sa_log_set_level(SA_LOG_INFO);
     else if (!strcmp(a, "--debug")) sa_log_set_level(SA_LOG_DEBUG);
     else if (OPT("--set")) {
@@ -130,10 +133,10 @@ static int run(int argc, char **argv)
     if (!rc) rc = fem_bending_angle(mesh, "tip", fem_solver_positions(s), &ang);
     if (!rc)
       printf("ours: nodes %d dof %d elems %d sig %.12e substeps %d cuts %d newton %d setup_s %.3f "
-             "solve_s %.3f assemble_s %.3f factor_s %.3f n_chol %d n_lu %d angle_deg %.6f\n",
+             "solve_s %.3f assemble_s %.3f factor_s %.3f n_chol %d n_lu %d n_reuse %d angle_deg %.6f\n",
              mesh->nnodes, 3 * mesh->nnodes, mesh->nelem, ccx_mesh_signature(mesh), rep.substeps,
              rep.cuts, rep.newton_iters, t1 - t0, t2 - t1, st.t_assemble, st.t_factor, st.n_chol,
-             st.n_lu, ang);
+             st.n_lu, st.n_reuse, ang);
   }
   fem_solver_destroy(&s);
   fem_mesh_destroy(&mesh);

@@ -90,10 +90,9 @@ tmp=$OUT.tmp
   echo "Reference row: ccx C3D20R on the finest structured hex half model (h = $(hexlab $hex_fine))."
   echo
   echo "$HDR"
-  for h in $(ls b_ours_[0-9]*.res 2>/dev/null | sed 's/b_ours_\(.*\)\.res/\1/' | sort -r); do
-    row "ours, tet10 mixed, h = $h" b_ours_$h b_hex_$hex_fine
+  for h in $(ls b_ours_dl_*.res 2>/dev/null | sed 's/b_ours_dl_\(.*\)\.res/\1/' | sort -g -r); do
+    row "ours, tet10 mixed, h = $h" b_ours_dl_$h b_hex_$hex_fine
   done
-  [ -f b_ours_dl_$H_TET.res ] && row "ours, h = $H_TET, first increment 0.25" b_ours_dl_$H_TET b_hex_$hex_fine
   [ -f b_mesh_$H_TET.res ] && row "ccx C3D10, h = $H_TET (locks)" b_mesh_$H_TET b_hex_$hex_fine
   for h in $hex_list; do row "ccx C3D20R hex, h = $(hexlab $h) (half model)" b_hex_$h b_hex_$hex_fine; done
   echo "<!-- tables:end -->"

@@ -24,8 +24,8 @@ BUILD=${BUILD:-$ROOT/build-ccx}
 WORK=${WORK:-$BUILD/bench/ccx_runs}
 PRESSURE=${PRESSURE:-30e3}
 H_TET=${H_TET:-3e-3}              # tet10 size shared by both codes (89.5k dof)
-H_TET_OURS=${H_TET_OURS:-"3e-3 4e-3"}   # our mesh-convergence series (b)
-H_HEX=${H_HEX:-"2e-3 1.5e-3 1.5e-3:0.5e-3"}  # C3D20R half model, h[:radial h] (33k, 58k, 69k dof)
+H_TET_OURS=${H_TET_OURS:-"4e-3 3e-3 2e-3 1.5e-3"}   # our mesh-convergence series (b): 82k-142k dof
+H_HEX=${H_HEX:-"2e-3 1.5e-3 1.5e-3:0.5e-3 1e-3 0.75e-3"}  # C3D20R half model, h[:radial h] (33k-277k dof)
 H_HEX_A=${H_HEX_A:-2e-3}          # C3D20R cross-check of stage a
 GEO=$ROOT/meshes/actuator.geo
 WHAT=${1:-all}
@@ -114,15 +114,13 @@ stage_a() {
   for h in $H_HEX_A; do hex_deck a_hex_$(tag $h) "$h" 5; ccx_run a_hex_$(tag $h); done
 }
 stage_b() {
+  # ours starts with ccx's first increment (0.25 of the load; *STATIC 0.25, 1)
   for h in $H_TET_OURS; do
     tet_deck b_mesh_$h "$h" 500
-    cp b_mesh_$h.tip b_ours_$h.tip
-    ours_run b_ours_$h --geo "$GEO" --h "$h" --set rings=0 --kappa-ratio 500 --pressure "$PRESSURE"
+    cp b_mesh_$h.tip b_ours_dl_$h.tip
+    ours_run b_ours_dl_$h --geo "$GEO" --h "$h" --set rings=0 --kappa-ratio 500 \
+      --pressure "$PRESSURE" --dl-init 0.25
   done
-  # ours with ccx's first increment (0.25 of the load) instead of the whole load
-  cp b_mesh_$H_TET.tip b_ours_dl_$H_TET.tip
-  ours_run b_ours_dl_$H_TET --geo "$GEO" --h "$H_TET" --set rings=0 --kappa-ratio 500 \
-    --pressure "$PRESSURE" --dl-init 0.25
   for h in $H_HEX; do hex_deck b_hex_$(tag $h) "$h" 500; ccx_run b_hex_$(tag $h); done
   tet_deck b_mesh_$H_TET "$H_TET" 500
   ccx_run b_mesh_$H_TET

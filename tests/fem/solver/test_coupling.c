@@ -9,7 +9,11 @@
  *    call) make no allocation in softact code: malloc/calloc/realloc are wrapped at link time
  *    (-Wl,--wrap) for this executable, which links libsa_fem statically, and counted. (CHOLMOD's
  *    own per-factorisation workspace inside libcholmod.so is not counted.) The time per call
- *    is printed with SA_TEST_VERBOSE=1. */
+ *    is printed with SA_TEST_VERBOSE=1.
+ * 3. The same calls with the factor-reusing options (predictor REUSE: the first iteration of
+ *    each call reuses the last factors; reuse_rate 0.3: modified Newton within a call) reach
+ *    the same equilibria (|u_C - u_B|_inf <= 1e-6 |u_B|_inf after the last call: both solved to
+ *    rtol 1e-8) with fewer factorisations. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -79,6 +83,8 @@ int main(void) {
   for (int d = 0; d < n3; d++) f2[d] = 1.001 * f[d];
   TU_CHECK(fem_solver_set_nodal_forces(b, m->nnodes, all, f2));
   TU_CHECK(fem_solver_solve(b));
+  FemSolverStats sb0;
+  fem_solver_stats(b, &sb0);
   long before = n_alloc;
   double t0 = sa_time_now();
   for (int k = 0; k < ncalls; k++) {
@@ -102,6 +108,51 @@ int main(void) {
     fprintf(stderr, "%ld allocations in softact code during %d coupling calls\n", allocs, ncalls);
     fails++;
   }
+
+  /* 3. factor reuse across and within coupling calls */
+  FemSolverParams prm = fem_solver_params_default();
+  prm.predictor = FEM_PREDICT_REUSE;
+  prm.reuse_rate = 0.3;
+  FemSolver *c;
+  TU_CHECK(fem_solver_create(m, &mat, &prm, &c));
+  TU_CHECK(fem_solver_fix_surface(c, "clamp", FEM_XYZ));
+  TU_CHECK(fem_solver_setup(c));
+  for (int d = 0; d < n3; d++) f2[d] = 1.001 * f[d];
+  TU_CHECK(fem_solver_set_nodal_forces(c, m->nnodes, all, f));
+  TU_CHECK(fem_solver_solve(c));
+  TU_CHECK(fem_solver_set_nodal_forces(c, m->nnodes, all, f2));
+  TU_CHECK(fem_solver_solve(c));
+  FemSolverStats sc0;
+  fem_solver_stats(c, &sc0);
+  for (int k = 0; k < ncalls; k++) {
+    double sc = (k % 2) ? 1.001 : 0.999;
+    for (int d = 0; d < n3; d++) f2[d] = sc * f[d];
+    TU_CHECK(fem_solver_set_nodal_forces(c, m->nnodes, all, f2));
+    TU_CHECK(fem_solver_solve(c));
+  }
+  FemSolverStats sc1;
+  fem_solver_stats(c, &sc1);
+  const double *uc = fem_solver_displacements(c);
+  ub = fem_solver_displacements(b);
+  dmax = umax = 0;
+  for (int d = 0; d < n3; d++) {
+    dmax = fmax(dmax, fabs(uc[d] - ub[d]));
+    umax = fmax(umax, fabs(ub[d]));
+  }
+  fails += tu_close("factor reuse reaches the same equilibrium: max |u_C - u_B|", dmax, 0.0,
+                    1e-6 * umax, 0.0);
+  int ncf = sc1.n_factor - sc0.n_factor;
+  if (getenv("SA_TEST_VERBOSE"))
+    printf("coupling calls with factor reuse: %d factorisations, %d reused directions\n", ncf,
+           sc1.n_reuse - sc0.n_reuse);
+  int nbf = st.n_factor - sb0.n_factor;
+  if (getenv("SA_TEST_VERBOSE")) printf("full Newton: %d factorisations\n", nbf);
+  if (!(ncf < nbf)) {
+    fprintf(stderr, "factor reuse: %d factorisations in %d calls, full Newton %d\n", ncf,
+            ncalls, nbf);
+    fails++;
+  }
+  fem_solver_destroy(&c);
   fem_solver_destroy(&a);
   fem_solver_destroy(&b);
   smesh_free(&m);
