@@ -149,7 +149,17 @@ static int umf_factorize(FemLinSolver *s, const double *values) {
   }
   if (!s->usym) {
     double t0 = sa_time_now();
-    st = umfpack_dl_symbolic(s->n, s->n, s->lp, s->li, values, &s->usym, s->uctrl, s->uinfo);
+    /* The tangent is structurally symmetric: UMFPACK's symmetric strategy with CHOLMOD's METIS
+     * permutation as the column pre-ordering gives the Cholesky fill pattern (diagonal pivots
+     * preferred). Against UMFPACK's default (AMD): nnz(L+U) 6.0e7 vs 7.3e7 and 4.4e10 vs 6.7e10
+     * flops on the 73k-dof actuator, ~20 % less factorisation time (docs/fem.md). */
+    s->uctrl[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;
+    SuiteSparse_long *q = malloc((size_t)s->n * sizeof *q);
+    SA_REQUIRE(q, SA_ERR_MEMORY, "cannot allocate the UMFPACK column ordering (n = %d)", s->n);
+    const int *perm = s->L->Perm;
+    for (int k = 0; k < s->n; k++) q[k] = perm[k];
+    st = umfpack_dl_qsymbolic(s->n, s->n, s->lp, s->li, values, q, &s->usym, s->uctrl, s->uinfo);
+    free(q);
     sa_timing_add("fem symbolic", sa_time_now() - t0);
     SA_REQUIRE(st == UMFPACK_OK, SA_ERR_LIBRARY, "umfpack_dl_symbolic failed (status %ld)",
                (long)st);
@@ -164,8 +174,8 @@ static int umf_factorize(FemLinSolver *s, const double *values) {
              "umfpack_dl_numeric failed (status %ld%s, n = %d)", (long)st,
              st == UMFPACK_ERROR_out_of_memory ? ": out of memory" : "", s->n);
   s->info.nnz_lu = s->uinfo[UMFPACK_LNZ] + s->uinfo[UMFPACK_UNZ];
-  sa_log(SA_LOG_DEBUG, "fem", "UMFPACK LU (n = %d): nnz(L+U) %.4g, peak memory %.0f MB",
-         s->n, s->info.nnz_lu, s->uinfo[UMFPACK_PEAK_MEMORY] * s->uinfo[UMFPACK_SIZE_OF_UNIT] / 1e6);
+  sa_log(SA_LOG_DEBUG, "fem", "UMFPACK LU (n = %d): nnz(L+U) %.4g, %.3g flops, peak memory %.0f MB",
+         s->n, s->info.nnz_lu, s->uinfo[UMFPACK_FLOPS], s->uinfo[UMFPACK_PEAK_MEMORY] * s->uinfo[UMFPACK_SIZE_OF_UNIT] / 1e6);
   s->info.kind = FEM_LIN_UMFPACK;
   s->info.n_umf++;
   return 0;
