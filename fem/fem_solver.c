@@ -79,7 +79,8 @@ struct FemSolver {
                    * fallback is logged once per substep; CHOLMOD is still tried every time) */
   int lu_substep; /* LU factorisations in the current substep */
   /* the factors held by lin are a tangent of the last converged state (its last Newton
-   * iteration), made for a substep of kind fact_kind: usable as the next predictor */
+   * iteration), made for a substep of kind (fact_dynamic, fact_dt, fact_alpha): usable as
+   * the next predictor (FEM_PREDICT_REUSE) */
   int fact_converged;
   int fact_dynamic;
   double fact_dt, fact_alpha;
@@ -102,6 +103,13 @@ int fem_solver_create(const FemMesh *mesh, const FemMaterial *mats, const FemSol
   *out = NULL;
   SA_REQUIRE(mesh && mesh->nnodes > 0 && mesh->nelem > 0, SA_ERR_INPUT, "empty mesh");
   SA_REQUIRE(mats, SA_ERR_INPUT, "no materials");
+  if (prm) {
+    SA_REQUIRE(prm->predictor >= FEM_PREDICT_NEW_LOAD && prm->predictor <= FEM_PREDICT_REUSE,
+               SA_ERR_INPUT, "predictor %d is not one of 0 (new_load), 1 (equilibrium), 2 (reuse)",
+               (int)prm->predictor);
+    SA_REQUIRE(prm->reuse_rate >= 0 && prm->reuse_rate < 1, SA_ERR_INPUT,
+               "reuse_rate %g not in [0, 1)", prm->reuse_rate);
+  }
   FemSolver *s;
   SA_CALLOC(s, 1);
   s->m = mesh;
