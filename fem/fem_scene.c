@@ -20,24 +20,13 @@
 #include <string.h>
 
 #include "fem.h"
+#include "fem_actuator.h"
 #include "sa_csv.h"
 #include "sa_error.h"
 #include "sa_log.h"
 #include "sa_output.h"
 #include "sa_plot.h"
 #include "sa_vtk.h"
-
-typedef struct {
-  char geo[SA_STR_MAX];
-  double h, h_band, h_ring;
-  int order, rings;
-} FemMeshParams;
-
-typedef struct {
-  char model[SA_STR_MAX];
-  double c10, c01, c20, c30, kappa_ratio, rho;
-  double limit_e, limit_nu, limit_rho, ring_e, ring_nu, ring_rho;
-} FemMatParams;
 
 typedef struct {
   char control[SA_STR_MAX];
@@ -47,60 +36,10 @@ typedef struct {
 } FemLoadParams;
 
 typedef struct {
-  double rtol, dl_min, reuse_rate;
-  int max_iter, threads;
-  char linear_solver[SA_STR_MAX], predictor[SA_STR_MAX];
-} FemSolverCaseParams;
-
-typedef struct {
   int vtk_every, centerline_slices;
   char tip_surface[SA_STR_MAX];
 } FemOutParams;
 
-#define P(f) offsetof(FemMeshParams, f)
-static const SaParam mesh_params[] = {
-    {"geo", SA_PARAM_FILE, P(geo), "-", "meshes/actuator.geo", 0, 0, 0, NULL,
-     "Gmsh .geo source of the actuator (relative to the case file, then to the softact source tree)"},
-    {"h", SA_PARAM_REAL, P(h), "m", "4e-3", 1e-4, 0.05, 0, NULL,
-     "target element size (mesh refinement is this one key)"},
-    {"h_band", SA_PARAM_REAL, P(h_band), "m", "2e-3", 1e-4, 0.05, 0, NULL,
-     "element size in the strain-limiting band"},
-    {"h_ring", SA_PARAM_REAL, P(h_ring), "m", "2e-3", 1e-4, 0.05, 0, NULL,
-     "element size in the reinforcement rings"},
-    {"order", SA_PARAM_INT, P(order), "-", "2", 1, 2, 0, NULL,
-     "element order: 2 = tet10 mixed (use this), 1 = tet4 (locks when nearly incompressible)"},
-    {"rings", SA_PARAM_INT, P(rings), "-", "1", 0, 1, 0, NULL,
-     "radial reinforcement rings present (0 = the design without rings)"},
-};
-#undef P
-#define P(f) offsetof(FemMatParams, f)
-static const SaParam mat_params[] = {
-    {"model", SA_PARAM_CHOICE, P(model), "-", "yeoh", 0, 0, 0, "yeoh|mooney_rivlin|neohooke",
-     "hyperelastic law of the silicone"},
-    {"c10", SA_PARAM_REAL, P(c10), "Pa", "0.11e6", 0, INFINITY, SA_MIN_OPEN, NULL,
-     "silicone C10 (neo-Hookean: mu = 2 C10)"},
-    {"c01", SA_PARAM_REAL, P(c01), "Pa", "0", 0, INFINITY, 0, NULL, "silicone C01 (Mooney-Rivlin)"},
-    {"c20", SA_PARAM_REAL, P(c20), "Pa", "0.02e6", -INFINITY, INFINITY, 0, NULL,
-     "silicone C20 (Yeoh)"},
-    {"c30", SA_PARAM_REAL, P(c30), "Pa", "0", -INFINITY, INFINITY, 0, NULL, "silicone C30 (Yeoh)"},
-    {"kappa_ratio", SA_PARAM_REAL, P(kappa_ratio), "-", "500", 1, 1e5, 0, NULL,
-     "silicone bulk modulus / initial shear modulus"},
-    {"rho", SA_PARAM_REAL, P(rho), "kg/m^3", "1130", 0, INFINITY, SA_MIN_OPEN, NULL,
-     "silicone density"},
-    {"limit_e", SA_PARAM_REAL, P(limit_e), "Pa", "1000e6", 0, INFINITY, SA_MIN_OPEN, NULL,
-     "strain-limiting layer Young's modulus"},
-    {"limit_nu", SA_PARAM_REAL, P(limit_nu), "-", "0.3", 0, 0.5, SA_MAX_OPEN, NULL,
-     "strain-limiting layer Poisson's ratio"},
-    {"limit_rho", SA_PARAM_REAL, P(limit_rho), "kg/m^3", "1000", 0, INFINITY, SA_MIN_OPEN, NULL,
-     "strain-limiting layer density"},
-    {"ring_e", SA_PARAM_REAL, P(ring_e), "Pa", "2000e6", 0, INFINITY, SA_MIN_OPEN, NULL,
-     "reinforcement ring Young's modulus"},
-    {"ring_nu", SA_PARAM_REAL, P(ring_nu), "-", "0.3", 0, 0.5, SA_MAX_OPEN, NULL,
-     "reinforcement ring Poisson's ratio"},
-    {"ring_rho", SA_PARAM_REAL, P(ring_rho), "kg/m^3", "1300", 0, INFINITY, SA_MIN_OPEN, NULL,
-     "reinforcement ring density"},
-};
-#undef P
 #define P(f) offsetof(FemLoadParams, f)
 static const SaParam load_params[] = {
     {"control", SA_PARAM_CHOICE, P(control), "-", "auto", 0, 0, 0, "auto|pressure|volume",
@@ -123,27 +62,6 @@ static const SaParam load_params[] = {
      "mesh surface clamped in x, y and z"},
 };
 #undef P
-#define P(f) offsetof(FemSolverCaseParams, f)
-static const SaParam solver_params[] = {
-    {"rtol", SA_PARAM_REAL, P(rtol), "-", "1e-8", 1e-14, 1e-2, 0, NULL,
-     "Newton residual tolerance relative to the force scale"},
-    {"max_iter", SA_PARAM_INT, P(max_iter), "-", "25", 1, 1000, 0, NULL,
-     "Newton iterations per substep"},
-    {"dl_min", SA_PARAM_REAL, P(dl_min), "-", "1e-4", 1e-12, 1, SA_MIN_OPEN, NULL,
-     "smallest substep as a fraction of an output step (limit-point detection)"},
-    {"threads", SA_PARAM_INT, P(threads), "-", "0", 0, 256, 0, NULL,
-     "assembly and BLAS threads (0 = the run's thread count)"},
-    {"linear_solver", SA_PARAM_CHOICE, P(linear_solver), "-", "auto", 0, 0, 0, "auto|lu",
-     "auto: CHOLMOD, UMFPACK LU when not positive definite/unsymmetric; lu: always UMFPACK"},
-    {"reuse_rate", SA_PARAM_REAL, P(reuse_rate), "-", "0", 0, 0.9, 0, NULL,
-     "reuse the factors while the residual norm falls by this factor per iteration "
-     "(0 = full Newton)"},
-    {"predictor", SA_PARAM_CHOICE, P(predictor), "-", "new_load", 0, 0, 0,
-     "new_load|equilibrium|reuse",
-     "first-iteration tangent of a substep: converged state with the new load's stiffness, "
-     "with its own load, or its last factors reused"},
-};
-#undef P
 #define P(f) offsetof(FemOutParams, f)
 static const SaParam out_params[] = {
     {"vtk_every", SA_PARAM_INT, P(vtk_every), "-", "1", 0, 100000, 0, NULL,
@@ -155,24 +73,17 @@ static const SaParam out_params[] = {
 };
 #undef P
 
-static const SaParamTable mesh_table = {"mesh", "fem", "FEM mesh of the actuator (selects the "
-                                        "fem scene)", mesh_params, SA_NPARAMS(mesh_params)};
-static const SaParamTable mat_table = {"material", "fem", "FEM materials per mesh region",
-                                       mat_params, SA_NPARAMS(mat_params)};
 static const SaParamTable load_table = {"loading", "fem", "FEM loads, supports and ramp control",
                                         load_params, SA_NPARAMS(load_params)};
-static const SaParamTable solver_table = {"solver", "fem", "FEM Newton and linear solver",
-                                          solver_params, SA_NPARAMS(solver_params)};
 static const SaParamTable out_table = {"output", "fem", "FEM outputs", out_params,
                                        SA_NPARAMS(out_params)};
-static const SaParamTable *const fem_tables[] = {&mesh_table, &mat_table, &load_table,
-                                                 &solver_table, &out_table};
+static const SaParamTable *const fem_tables[] = {
+    &fem_actuator_mesh_table, &fem_actuator_material_table, &load_table,
+    &fem_actuator_solver_table, &out_table};
 
 typedef struct {
-  FemMeshParams mesh;
-  FemMatParams mat;
+  FemActuatorCase act;
   FemLoadParams load;
-  FemSolverCaseParams solver;
   FemOutParams out;
 } FemScene;
 
@@ -180,19 +91,12 @@ static int fem_check(const SaCase *c, void **out) {
   *out = NULL;
   FemScene *s;
   SA_CALLOC(s, 1);
-  int rc = sa_params_load(&mesh_table, c, &s->mesh);
-  if (!rc) rc = sa_params_load(&mat_table, c, &s->mat);
+  int rc = fem_actuator_load(c, &s->act);
   if (!rc) rc = sa_params_load(&load_table, c, &s->load);
-  if (!rc) rc = sa_params_load(&solver_table, c, &s->solver);
   if (!rc) rc = sa_params_load(&out_table, c, &s->out);
-  if (!rc && !s->mesh.geo[0])
-    rc = SA_ERROR(SA_ERR_INPUT, "%s: [mesh] geo: no .geo file given", sa_case_path(c));
   if (!rc && s->load.max_steps < s->load.n_steps)
     rc = SA_ERROR(SA_ERR_INPUT, "%s: [loading] max_steps = %d < n_steps = %d", sa_case_path(c),
                   s->load.max_steps, s->load.n_steps);
-  if (!rc && !strcmp(s->mat.model, "mooney_rivlin") && s->mat.c01 <= 0)
-    rc = SA_ERROR(SA_ERR_INPUT, "%s: [material] c01 must be > 0 for model = mooney_rivlin",
-                  sa_case_path(c));
   if (rc) {
     free(s);
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
@@ -203,43 +107,23 @@ static int fem_check(const SaCase *c, void **out) {
 
 static void fem_write_resolved(const void *scene, FILE *f) {
   const FemScene *s = scene;
-  for (int i = 0; i < 5; i++) {
-    const void *p = i == 0 ? (const void *)&s->mesh : i == 1 ? (const void *)&s->mat
-                    : i == 2 ? (const void *)&s->load : i == 3 ? (const void *)&s->solver
-                             : (const void *)&s->out;
-    sa_params_write(fem_tables[i], p, f);
-    fprintf(f, "\n");
-  }
+  /* section order as in the tables: mesh, material, loading, solver, output */
+  sa_params_write(&fem_actuator_mesh_table, &s->act.mesh, f);
+  fprintf(f, "\n");
+  sa_params_write(&fem_actuator_material_table, &s->act.mat, f);
+  fprintf(f, "\n");
+  sa_params_write(&load_table, &s->load, f);
+  fprintf(f, "\n");
+  sa_params_write(&fem_actuator_solver_table, &s->act.solver, f);
+  fprintf(f, "\n");
+  sa_params_write(&out_table, &s->out, f);
+  fprintf(f, "\n");
 }
 
 static void fem_destroy(void **scene) {
   if (!scene) return;
   free(*scene);
   *scene = NULL;
-}
-
-/* Materials by region name. */
-static int scene_materials(const FemScene *sc, const FemMesh *m, FemMaterial *mats) {
-  const FemMatParams *p = &sc->mat;
-  for (int r = 0; r < m->nregions; r++) {
-    const char *name = m->region_names[r];
-    if (!strcmp(name, "silicone")) {
-      FemMaterial s = {.c10 = p->c10, .rho = p->rho};
-      if (!strcmp(p->model, "yeoh")) s.kind = FEM_MAT_YEOH, s.c20 = p->c20, s.c30 = p->c30;
-      else if (!strcmp(p->model, "mooney_rivlin")) s.kind = FEM_MAT_MOONEY_RIVLIN, s.c01 = p->c01;
-      else s.kind = FEM_MAT_NEOHOOKE;
-      s.kappa = p->kappa_ratio * fem_material_mu0(&s);
-      mats[r] = s;
-    } else if (!strcmp(name, "strain_limit")) {
-      mats[r] = fem_material_from_e_nu(p->limit_e, p->limit_nu, p->limit_rho);
-    } else if (!strcmp(name, "reinforcement")) {
-      mats[r] = fem_material_from_e_nu(p->ring_e, p->ring_nu, p->ring_rho);
-    } else {
-      return SA_ERROR(SA_ERR_INPUT, "mesh region '%s' has no material (known: silicone, "
-                      "strain_limit, reinforcement)", name);
-    }
-  }
-  return 0;
 }
 
 typedef struct {
@@ -407,28 +291,15 @@ static int run_ramp(Out *o) {
 static int fem_run(void *scene, SaRun *run) {
   FemScene *sc = scene;
   double t_start = sa_time_now();
-  FemGeoParam gp[] = {{"rings", sc->mesh.rings}, {"h_band", sc->mesh.h_band},
-                      {"h_ring", sc->mesh.h_ring}};
   FemMesh *m = NULL;
-  double t0 = sa_time_now();
-  SA_CHECK(fem_mesh_generate(sc->mesh.geo, 3, gp, sc->mesh.h, sc->mesh.order, &m));
-  sa_timing_add("fem mesh", sa_time_now() - t0);
+  SA_CHECK(fem_actuator_mesh(&sc->act, &m));
   Out o = {.sc = sc, .run = run, .m = m};
   FemMaterial *mats = calloc((size_t)(m->nregions > 0 ? m->nregions : 1), sizeof *mats);
   int rc = mats ? 0 : SA_ERROR(SA_ERR_MEMORY, "materials");
   const char *surfs[] = {sc->load.pressure_surface, sc->load.fixed_surface, sc->out.tip_surface};
   if (!rc) rc = fem_mesh_require(m, 0, NULL, 3, surfs);
-  if (!rc) rc = scene_materials(sc, m, mats);
-  FemSolverParams prm = fem_solver_params_default();
-  prm.rtol = sc->solver.rtol;
-  prm.max_iter = sc->solver.max_iter;
-  prm.dl_min = sc->solver.dl_min;
-  prm.threads = sc->solver.threads > 0 ? sc->solver.threads : run->threads;
-  prm.linsolver = !strcmp(sc->solver.linear_solver, "lu") ? FEM_LINSOLVER_LU : FEM_LINSOLVER_AUTO;
-  prm.reuse_rate = sc->solver.reuse_rate;
-  prm.predictor = !strcmp(sc->solver.predictor, "equilibrium") ? FEM_PREDICT_EQUILIBRIUM
-                  : !strcmp(sc->solver.predictor, "reuse")       ? FEM_PREDICT_REUSE
-                                                                 : FEM_PREDICT_NEW_LOAD;
+  if (!rc) rc = fem_actuator_materials(&sc->act, m, mats);
+  FemSolverParams prm = fem_actuator_solver_params(&sc->act, run->threads);
   if (!rc) rc = fem_solver_create(m, mats, &prm, &o.s);
   if (!rc) rc = fem_solver_fix_surface(o.s, sc->load.fixed_surface, FEM_XYZ);
   if (!rc) rc = fem_solver_add_pressure_surface(o.s, sc->load.pressure_surface);

@@ -1,0 +1,151 @@
+/* fem_actuator.c - the reference actuator as a FEM model: case tables, mesh, materials and
+ * solver parameters shared by the pressure, FEM-DEM and Mohr-Coulomb scenes (fem_actuator.h). */
+#include "fem_actuator.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+#include "sa_error.h"
+#include "sa_log.h"
+#include "sa_output.h"
+
+#define P(f) offsetof(FemMeshParams, f)
+static const SaParam mesh_params[] = {
+    {"geo", SA_PARAM_FILE, P(geo), "-", "meshes/actuator.geo", 0, 0, 0, NULL,
+     "Gmsh .geo source of the actuator (relative to the case file, then to the softact source tree)"},
+    {"h", SA_PARAM_REAL, P(h), "m", "4e-3", 1e-4, 0.05, 0, NULL,
+     "target element size (mesh refinement is this one key)"},
+    {"h_band", SA_PARAM_REAL, P(h_band), "m", "2e-3", 1e-4, 0.05, 0, NULL,
+     "element size in the strain-limiting band"},
+    {"h_ring", SA_PARAM_REAL, P(h_ring), "m", "2e-3", 1e-4, 0.05, 0, NULL,
+     "element size in the reinforcement rings"},
+    {"order", SA_PARAM_INT, P(order), "-", "2", 1, 2, 0, NULL,
+     "element order: 2 = tet10 mixed (use this), 1 = tet4 (locks when nearly incompressible)"},
+    {"rings", SA_PARAM_INT, P(rings), "-", "1", 0, 1, 0, NULL,
+     "radial reinforcement rings present (0 = the design without rings)"},
+};
+#undef P
+#define P(f) offsetof(FemMatParams, f)
+static const SaParam mat_params[] = {
+    {"model", SA_PARAM_CHOICE, P(model), "-", "yeoh", 0, 0, 0, "yeoh|mooney_rivlin|neohooke",
+     "hyperelastic law of the silicone"},
+    {"c10", SA_PARAM_REAL, P(c10), "Pa", "0.11e6", 0, INFINITY, SA_MIN_OPEN, NULL,
+     "silicone C10 (neo-Hookean: mu = 2 C10)"},
+    {"c01", SA_PARAM_REAL, P(c01), "Pa", "0", 0, INFINITY, 0, NULL, "silicone C01 (Mooney-Rivlin)"},
+    {"c20", SA_PARAM_REAL, P(c20), "Pa", "0.02e6", -INFINITY, INFINITY, 0, NULL,
+     "silicone C20 (Yeoh)"},
+    {"c30", SA_PARAM_REAL, P(c30), "Pa", "0", -INFINITY, INFINITY, 0, NULL, "silicone C30 (Yeoh)"},
+    {"kappa_ratio", SA_PARAM_REAL, P(kappa_ratio), "-", "500", 1, 1e5, 0, NULL,
+     "silicone bulk modulus / initial shear modulus"},
+    {"rho", SA_PARAM_REAL, P(rho), "kg/m^3", "1130", 0, INFINITY, SA_MIN_OPEN, NULL,
+     "silicone density"},
+    {"limit_e", SA_PARAM_REAL, P(limit_e), "Pa", "1000e6", 0, INFINITY, SA_MIN_OPEN, NULL,
+     "strain-limiting layer Young's modulus"},
+    {"limit_nu", SA_PARAM_REAL, P(limit_nu), "-", "0.3", 0, 0.5, SA_MAX_OPEN, NULL,
+     "strain-limiting layer Poisson's ratio"},
+    {"limit_rho", SA_PARAM_REAL, P(limit_rho), "kg/m^3", "1000", 0, INFINITY, SA_MIN_OPEN, NULL,
+     "strain-limiting layer density"},
+    {"ring_e", SA_PARAM_REAL, P(ring_e), "Pa", "2000e6", 0, INFINITY, SA_MIN_OPEN, NULL,
+     "reinforcement ring Young's modulus"},
+    {"ring_nu", SA_PARAM_REAL, P(ring_nu), "-", "0.3", 0, 0.5, SA_MAX_OPEN, NULL,
+     "reinforcement ring Poisson's ratio"},
+    {"ring_rho", SA_PARAM_REAL, P(ring_rho), "kg/m^3", "1300", 0, INFINITY, SA_MIN_OPEN, NULL,
+     "reinforcement ring density"},
+};
+#undef P
+#define P(f) offsetof(FemSolverCaseParams, f)
+static const SaParam solver_params[] = {
+    {"rtol", SA_PARAM_REAL, P(rtol), "-", "1e-8", 1e-14, 1e-2, 0, NULL,
+     "Newton residual tolerance relative to the force scale"},
+    {"max_iter", SA_PARAM_INT, P(max_iter), "-", "25", 1, 1000, 0, NULL,
+     "Newton iterations per substep"},
+    {"dl_min", SA_PARAM_REAL, P(dl_min), "-", "1e-4", 1e-12, 1, SA_MIN_OPEN, NULL,
+     "smallest substep as a fraction of an output step (limit-point detection)"},
+    {"threads", SA_PARAM_INT, P(threads), "-", "0", 0, 256, 0, NULL,
+     "assembly and BLAS threads (0 = the run's thread count)"},
+    {"linear_solver", SA_PARAM_CHOICE, P(linear_solver), "-", "auto", 0, 0, 0, "auto|lu",
+     "auto: CHOLMOD, UMFPACK LU when not positive definite/unsymmetric; lu: always UMFPACK"},
+    {"reuse_rate", SA_PARAM_REAL, P(reuse_rate), "-", "0", 0, 0.9, 0, NULL,
+     "reuse the factors while the residual norm falls by this factor per iteration "
+     "(0 = full Newton)"},
+    {"predictor", SA_PARAM_CHOICE, P(predictor), "-", "new_load", 0, 0, 0,
+     "new_load|equilibrium|reuse",
+     "first-iteration tangent of a substep: converged state with the new load's stiffness, "
+     "with its own load, or its last factors reused"},
+};
+#undef P
+const SaParamTable fem_actuator_mesh_table = {
+    "mesh", "fem", "FEM mesh of the actuator (selects the fem scene)", mesh_params,
+    SA_NPARAMS(mesh_params)};
+const SaParamTable fem_actuator_material_table = {"material", "fem",
+                                                  "FEM materials per mesh region", mat_params,
+                                                  SA_NPARAMS(mat_params)};
+const SaParamTable fem_actuator_solver_table = {"solver", "fem", "FEM Newton and linear solver",
+                                                solver_params, SA_NPARAMS(solver_params)};
+
+int fem_actuator_load(const SaCase *c, FemActuatorCase *a) {
+  SA_CHECK(sa_params_load(&fem_actuator_mesh_table, c, &a->mesh));
+  SA_CHECK(sa_params_load(&fem_actuator_material_table, c, &a->mat));
+  SA_CHECK(sa_params_load(&fem_actuator_solver_table, c, &a->solver));
+  SA_REQUIRE(a->mesh.geo[0], SA_ERR_INPUT, "%s: [mesh] geo: no .geo file given", sa_case_path(c));
+  SA_REQUIRE(strcmp(a->mat.model, "mooney_rivlin") || a->mat.c01 > 0, SA_ERR_INPUT,
+             "%s: [material] c01 must be > 0 for model = mooney_rivlin", sa_case_path(c));
+  return 0;
+}
+
+void fem_actuator_write_resolved(const FemActuatorCase *a, FILE *f) {
+  sa_params_write(&fem_actuator_mesh_table, &a->mesh, f);
+  fprintf(f, "\n");
+  sa_params_write(&fem_actuator_material_table, &a->mat, f);
+  fprintf(f, "\n");
+  sa_params_write(&fem_actuator_solver_table, &a->solver, f);
+  fprintf(f, "\n");
+}
+
+int fem_actuator_mesh(const FemActuatorCase *a, FemMesh **m) {
+  FemGeoParam gp[] = {{"rings", a->mesh.rings}, {"h_band", a->mesh.h_band},
+                      {"h_ring", a->mesh.h_ring}};
+  double t0 = sa_time_now();
+  SA_CHECK(fem_mesh_generate(a->mesh.geo, 3, gp, a->mesh.h, a->mesh.order, m));
+  sa_timing_add("fem mesh", sa_time_now() - t0);
+  return 0;
+}
+
+int fem_actuator_materials(const FemActuatorCase *a, const FemMesh *m, FemMaterial *mats) {
+  const FemMatParams *p = &a->mat;
+  for (int r = 0; r < m->nregions; r++) {
+    const char *name = m->region_names[r];
+    if (!strcmp(name, "silicone")) {
+      FemMaterial s = {.c10 = p->c10, .rho = p->rho};
+      if (!strcmp(p->model, "yeoh")) s.kind = FEM_MAT_YEOH, s.c20 = p->c20, s.c30 = p->c30;
+      else if (!strcmp(p->model, "mooney_rivlin")) s.kind = FEM_MAT_MOONEY_RIVLIN, s.c01 = p->c01;
+      else s.kind = FEM_MAT_NEOHOOKE;
+      s.kappa = p->kappa_ratio * fem_material_mu0(&s);
+      mats[r] = s;
+    } else if (!strcmp(name, "strain_limit")) {
+      mats[r] = fem_material_from_e_nu(p->limit_e, p->limit_nu, p->limit_rho);
+    } else if (!strcmp(name, "reinforcement")) {
+      mats[r] = fem_material_from_e_nu(p->ring_e, p->ring_nu, p->ring_rho);
+    } else {
+      return SA_ERROR(SA_ERR_INPUT, "mesh region '%s' has no material (known: silicone, "
+                      "strain_limit, reinforcement)", name);
+    }
+  }
+  return 0;
+}
+
+FemSolverParams fem_actuator_solver_params(const FemActuatorCase *a, int run_threads) {
+  const FemSolverCaseParams *c = &a->solver;
+  FemSolverParams prm = fem_solver_params_default();
+  prm.rtol = c->rtol;
+  prm.max_iter = c->max_iter;
+  prm.dl_min = c->dl_min;
+  prm.threads = c->threads > 0 ? c->threads : run_threads;
+  prm.linsolver = !strcmp(c->linear_solver, "lu") ? FEM_LINSOLVER_LU : FEM_LINSOLVER_AUTO;
+  prm.reuse_rate = c->reuse_rate;
+  prm.predictor = !strcmp(c->predictor, "equilibrium") ? FEM_PREDICT_EQUILIBRIUM
+                  : !strcmp(c->predictor, "reuse")       ? FEM_PREDICT_REUSE
+                                                         : FEM_PREDICT_NEW_LOAD;
+  return prm;
+}

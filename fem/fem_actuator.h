@@ -1,0 +1,54 @@
+/* fem_actuator.h - the reference actuator (/work/shared/ACTUATOR.md) as a FEM model, shared by
+ * every scene of it (pressure baseline, FEM-DEM coupling, Mohr-Coulomb fill): the [mesh],
+ * [material] and [solver] case tables, mesh generation from meshes/actuator.geo, the material
+ * of each mesh region and the solver parameters. A scene adds its own loads and outputs. */
+#ifndef FEM_ACTUATOR_H
+#define FEM_ACTUATOR_H
+
+#include <stdio.h>
+
+#include "fem.h"
+#include "sa_params.h"
+
+typedef struct {
+  char geo[SA_STR_MAX];
+  double h, h_band, h_ring;
+  int order, rings;
+} FemMeshParams;
+
+typedef struct {
+  char model[SA_STR_MAX];
+  double c10, c01, c20, c30, kappa_ratio, rho;
+  double limit_e, limit_nu, limit_rho, ring_e, ring_nu, ring_rho;
+} FemMatParams;
+
+typedef struct {
+  double rtol, dl_min, reuse_rate;
+  int max_iter, threads;
+  char linear_solver[SA_STR_MAX], predictor[SA_STR_MAX];
+} FemSolverCaseParams;
+
+/* The three sections every actuator scene reads. */
+typedef struct {
+  FemMeshParams mesh;
+  FemMatParams mat;
+  FemSolverCaseParams solver;
+} FemActuatorCase;
+
+extern const SaParamTable fem_actuator_mesh_table;     /* [mesh] */
+extern const SaParamTable fem_actuator_material_table; /* [material] */
+extern const SaParamTable fem_actuator_solver_table;   /* [solver] */
+
+/* Load and cross-check [mesh], [material], [solver] of case c [in] into a [out]. */
+int fem_actuator_load(const SaCase *c, FemActuatorCase *a);
+/* Write the three resolved sections to f. */
+void fem_actuator_write_resolved(const FemActuatorCase *a, FILE *f);
+/* Generate the mesh (Gmsh) of a [in]: *m [owned]. */
+int fem_actuator_mesh(const FemActuatorCase *a, FemMesh **m);
+/* Material of every region of m [in] from a [in]: mats [out] m->nregions entries. Regions:
+ * silicone, strain_limit, reinforcement; any other name is an input error. */
+int fem_actuator_materials(const FemActuatorCase *a, const FemMesh *m, FemMaterial *mats);
+/* Solver parameters of a [in]; run_threads is used when [solver] threads = 0. */
+FemSolverParams fem_actuator_solver_params(const FemActuatorCase *a, int run_threads);
+
+#endif
