@@ -10,7 +10,7 @@ set(_sa_fem_sources
   ${CMAKE_CURRENT_LIST_DIR}/fem_linsolve.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_solver.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_bending.c)
-foreach(_f fem_actuator.c fem_scene.c)
+foreach(_f fem_actuator.c fem_coupling.c fem_scene.c)
   if(EXISTS ${CMAKE_CURRENT_LIST_DIR}/${_f})
     list(APPEND _sa_fem_sources ${CMAKE_CURRENT_LIST_DIR}/${_f})
   endif()
