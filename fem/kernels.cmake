@@ -5,3 +5,5 @@ add_library(sa_fem_kernels
   ${CMAKE_CURRENT_LIST_DIR}/fem_kernel_quad.c)
 target_include_directories(sa_fem_kernels PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 target_link_libraries(sa_fem_kernels PUBLIC sa_core m)
+# Mohr-Coulomb finite-strain elastoplasticity kernel (docs/mohr_coulomb.md)
+target_sources(sa_fem_kernels PRIVATE ${CMAKE_CURRENT_LIST_DIR}/fem_mohr_coulomb.c)
