@@ -2,7 +2,9 @@
  *
  *   erk   ARKODE ERKStep, Dormand-Prince 5(4) (ARKODE_DORMAND_PRINCE_7_4_5)
  *   dirk  ARKODE ARKStep, implicit only, ARKODE_ARK548L2SA_DIRK_8_4_5 (default DIRK 5th order),
- *         dense SUNMatrix + SUNLinSol_Dense with the analytic Jacobian
+ *         dense SUNMatrix + SUNLinSol_Dense with the analytic Jacobian; dense output from
+ *         ARKODE's Hermite interpolant, or its Lagrange interpolant where the Maxwell branch
+ *         is stiff (relaxation rate > 50 x 2 pi/T_ref at the start state; see start_solver)
  *   bdf   CVODE BDF (order <= 5), dense linear solver with the analytic Jacobian
  *   auto  start with erk; switch to bdf at the current state when explicit steps collapse:
  *         50 consecutive steps with h < switch_ratio * T_ref while h is stability-bound
