@@ -1,6 +1,7 @@
 # FindLIGGGHTS - Debian's libliggghts-dev (no CMake config or pkg-config file is shipped).
 # Defines LIGGGHTS::LIGGGHTS (headers in /usr/include/liggghts, library libliggghts, plus MPI,
-# since LIGGGHTS' library.h includes mpi.h).
+# since LIGGGHTS' library.h and its C++ headers include mpi.h). The C++ MPI component is not
+# needed: LIGGGHTS uses the C bindings only.
 find_path(LIGGGHTS_INCLUDE_DIR library.h PATH_SUFFIXES liggghts)
 find_library(LIGGGHTS_LIBRARY liggghts)
 find_package(MPI COMPONENTS C)

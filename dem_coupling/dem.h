@@ -1,22 +1,123 @@
 /* dem.h - the LIGGGHTS bridge of the FEM-DEM coupling (dem_coupling module).
  *
- * Foundation stage: only the library handle exists, so that the build, the dependency and the
- * "a scene without particles never starts LIGGGHTS or MPI" rule are in place. The coupling
- * (particle set-up, wall mesh exchange, contact forces every coupling step) is the FEM-DEM issue.
- * LIGGGHTS aborts the process on a bad command: callers validate before sending, and DEM tests
- * run as separate processes (ctest label `dem`). */
+ * LIGGGHTS 3.8 (Debian libliggghts-dev) runs in-process, serial, through its C library interface
+ * (library.h); the few things that interface cannot do (move individual nodes of a wall mesh,
+ * read per-triangle forces) go through a small C++ shim (dem_shim.cpp, extern "C", private).
+ * LIGGGHTS writes its own output to the log file given at creation, never to the terminal.
+ * LIGGGHTS aborts the process on a bad command: every value is validated here before a command
+ * is sent, and DEM tests run as separate processes (ctest label `dem`).
+ *
+ * Units: SI throughout (m, kg, s, N, Pa).
+ *
+ * Lifecycle (handle first, outputs last; destroy accepts NULL):
+ *   dem_bridge_create(log_path, &b)
+ *   dem_bridge_setup(b, &params)               box, particle + wall materials, contact model
+ *   dem_bridge_add_mesh(b, ...)                 wall meshes (before the first run)
+ *   dem_bridge_insert_cylinder(b, ...)          pour grains into a region
+ *   [dem_bridge_finalize_walls(b)]              else done by the first dem_bridge_run
+ *   loop: dem_bridge_set_mesh_nodes / dem_bridge_run / dem_bridge_mesh_forces / particles
+ *   dem_bridge_destroy(&b)
+ *
+ * Material types: every grain has type 1; a wall mesh names the contact partner type
+ * DEM_WALL_SILICONE (friction_wall) or DEM_WALL_STEEL (friction_piston: piston and barrel). */
 #ifndef DEM_H
 #define DEM_H
 
 typedef struct DemBridge DemBridge;
 
-/* Start a serial LIGGGHTS instance (no MPI_Init by us: LIGGGHTS' lammps_open_no_mpi).
+typedef enum { DEM_WALL_SILICONE = 2, DEM_WALL_STEEL = 3 } DemWallType;
+
+typedef struct {
+  /* grains (type 1) */
+  double diameter;         /* [m] */
+  double density;          /* [kg/m^3] */
+  double young;            /* [Pa] already softened: the value LIGGGHTS uses */
+  double poisson;          /* [-] */
+  double restitution;      /* [-] (0, 1] */
+  double friction;         /* grain-grain Coulomb coefficient [-] >= 0 */
+  double friction_wall;    /* grain-silicone [-] >= 0 */
+  double friction_piston;  /* grain-piston and grain-barrel [-] >= 0 */
+  double rolling_friction; /* rolling-resistance coefficient (epsd2 model) [-] >= 0 */
+  /* walls: elastic properties of the wall side of a contact (same for both wall types) */
+  double wall_young, wall_poisson; /* [Pa], [-] */
+  /* simulation */
+  double dt;               /* DEM time step [s]; dem_bridge_setup refuses one above
+                            * dt_safety * dem_rayleigh_dt(...) */
+  double dt_safety;        /* fraction of the Rayleigh time step allowed, e.g. 0.2 */
+  double gravity[3];       /* [m/s^2] */
+  double box_lo[3], box_hi[3]; /* simulation box [m]; grains leaving it are lost (counted) */
+  double skin;             /* neighbour skin [m] (e.g. 0.2 diameter) */
+  int seed;                /* random seed for insertion (> 0; the bridge's own generator) */
+} DemParams;
+
+/* Rayleigh time step of a Hertz contact [s]: pi R sqrt(rho / G) / (0.1631 nu + 0.8766). */
+double dem_rayleigh_dt(double diameter, double density, double young, double poisson);
+/* Hertz contact time of two equal spheres colliding at relative speed v [s] (elastic):
+ * t_c = 2.87 (m*^2 / (R* E*^2 v))^(1/5), m* = m/2, R* = R/2, E* = E / (2 (1 - nu^2)). */
+double dem_hertz_contact_time(double diameter, double density, double young, double poisson,
+                              double v);
+/* Hertz contact time of a sphere striking a flat wall of elastic properties (wall_young,
+ * wall_poisson) at normal speed v [s] (elastic): the same formula with m* = m, R* = R,
+ * 1/E* = (1 - nu^2)/E + (1 - nu_w^2)/E_w. */
+double dem_hertz_wall_contact_time(double diameter, double density, double young, double poisson,
+                                   double wall_young, double wall_poisson, double v);
+
+/* Start a serial LIGGGHTS instance writing its log to log_path [in] (NULL: no log).
  * *out [owned]. */
-int dem_bridge_create(DemBridge **out);
-/* Send one input-script command (validated by the caller). */
-int dem_bridge_command(DemBridge *b, const char *cmd);
-/* Number of particles currently in the simulation. */
+int dem_bridge_create(const char *log_path, DemBridge **out);
+/* Validate params [in] (each value named with its allowed range on failure) and issue the
+ * set-up commands: units, box, atom style, materials, granular pair style (Hertz with history,
+ * tangential friction, rolling friction epsd2), gravity, integrator, time step. */
+int dem_bridge_setup(DemBridge *b, const DemParams *params);
+
+/* A triangulated wall: nverts vertices xyz [in] 3*nverts, ntri triangles tri [in] 3*ntri
+ * (vertex indices; no orientation is required: LIGGGHTS walls are two-sided). name [in]:
+ * letters, digits, '_' (at most 31). Forces on it are tracked (stress mesh). The mesh may later
+ * be moved node by node with dem_bridge_set_mesh_nodes. Returns the mesh id (>= 0) in *id.
+ * Refused (SA_ERR_INPUT): a vertex outside the box, a degenerate, needle-like (an angle below
+ * 0.1 degree) or duplicate triangle. After dem_bridge_setup, before the walls are finalized. */
+int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double *xyz, int ntri,
+                        const int *tri, DemWallType type, int *id);
+/* Create the wall contact (one fix wall/gran over every mesh added so far, same contact model
+ * as the grains). dem_bridge_run calls it at its first call if the caller has not; no mesh can
+ * be added afterwards. */
+int dem_bridge_finalize_walls(DemBridge *b);
+/* New vertex positions xyz [in] 3*nverts and velocities v [in] 3*nverts (NULL: zero) of mesh
+ * id; LIGGGHTS' contact model sees the velocities. No allocation; re-neighbours when a vertex
+ * moved more than half the skin since the last neighbour build. A vertex outside the box is
+ * refused with SA_ERR_DOMAIN (LIGGGHTS would abort on a lost wall element). */
+int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const double *v);
+/* Force the grains exert on each triangle of mesh id, f [out] 3*ntri [N], at the last step. */
+int dem_bridge_mesh_forces(DemBridge *b, int id, double *f);
+int dem_bridge_mesh_ntri(DemBridge *b, int id);
+/* The node positions LIGGGHTS holds for mesh id, in the caller's vertex order, xyz [out]
+ * 3*nverts (a check of dem_bridge_set_mesh_nodes); SA_ERR_INTERNAL if the copies of one vertex
+ * in different triangles disagree. */
+int dem_bridge_mesh_nodes(DemBridge *b, int id, double *xyz);
+
+/* Pour grains: insert n grains at random non-overlapping positions inside the vertical
+ * cylinder (axis x = cx, y = cy, radius r) between z_lo and z_hi [m], with zero velocity. Returns
+ * the number actually inserted in *inserted (fewer when the region is too full). */
+int dem_bridge_insert_cylinder(DemBridge *b, double cx, double cy, double r, double z_lo,
+                               double z_hi, int n, int *inserted);
+/* Advance nsteps DEM steps. */
+int dem_bridge_run(DemBridge *b, int nsteps);
+/* Number of grains currently in the simulation (lost ones excluded). */
 int dem_bridge_count(DemBridge *b);
+/* Copy grain data out (any may be NULL): x, v, f [out] 3*n, radius [out] n; n = count. The
+ * order is LIGGGHTS' own and may change from one dem_bridge_run to the next. */
+int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *radius);
+/* Largest overlap over all grain-grain and grain-wall contacts, as a fraction of the grain
+ * diameter [-] (grain-grain: from positions; grain-wall: from the meshes). */
+double dem_bridge_max_overlap(DemBridge *b);
+/* Total kinetic energy of the grains [J]. */
+double dem_bridge_kinetic_energy(DemBridge *b);
+/* Write a restart file (LIGGGHTS write_restart: grains, their contact histories, box) to
+ * path [in] (no whitespace and none of # $ * % & ' " in it). Reading one back is not part of
+ * this interface yet. */
+int dem_bridge_write_restart(DemBridge *b, const char *path);
+/* Send one raw input-script command (validated by the caller; tests and studies only). */
+int dem_bridge_command(DemBridge *b, const char *cmd);
 void dem_bridge_destroy(DemBridge **b);
 
 #endif

@@ -1,23 +1,285 @@
-/* dem_bridge.c - thin handle around the LIGGGHTS C library interface (library.h). */
+/* dem_bridge.c - the LIGGGHTS bridge: a serial LIGGGHTS instance driven through its C library
+ * interface (library.h), wall meshes moved node by node through dem_shim.cpp.
+ *
+ * Contact model (LIGGGHTS `model hertz tangential history [rolling_friction epsd2]`): Hertz
+ * normal force F = 4/3 E* sqrt(R*) delta^1.5 with viscous damping set from the restitution,
+ * Mindlin tangential spring capped by Coulomb friction, elastic-plastic rolling resistance
+ * (Ai et al., Powder Technol. 206 (2011) 269) when rolling_friction > 0.
+ * Time step bound (Rayleigh wave, Li et al. 2005 / Ning & Ghadiri):
+ *   dt_R = pi R sqrt(rho / G) / (0.1631 nu + 0.8766),  G = E / (2 (1 + nu)).
+ * Hertz contact time (Johnson, Contact Mechanics, 1985, sec. 11.4):
+ *   t_c = 2.87 (m*^2 / (R* E*^2 v))^(1/5).
+ *
+ * LIGGGHTS aborts the process on a bad command, so every value is checked before a command is
+ * sent. Wall meshes reach LIGGGHTS as temporary ASCII STL files (written and deleted during
+ * set-up); LIGGGHTS keeps each triangle's position in that file as its id, which is the
+ * caller's triangle index (degenerate triangles, which LIGGGHTS would drop, are refused). */
 #include "dem.h"
 
 #include <library.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
+#include "dem_shim.h"
 #include "sa_error.h"
+
+#define DEM_CMD_MAX 4096
+#define DEM_NAME_MAX 31
+
+typedef struct {
+  char fix_id[DEM_NAME_MAX + 8];
+  DemWallType type;
+  int nverts, ntri;
+  double *xyz; /* current vertex positions (caller order) [owned] */
+  int *tri;    /* caller triangles [owned] */
+  int *idx;    /* 3*ntri: caller vertex of corner c of LIGGGHTS element id [owned] */
+  void *shim;  /* the fix mesh/surface [borrowed from LIGGGHTS] */
+} DemMesh;
 
 struct DemBridge {
   void *lmp;
+  char tmpdir[256];
+  DemParams p;
+  int is_setup, walls_done, need_setup, rolling, ran;
+  DemMesh *mesh;
+  int nmesh, mesh_cap;
+  uint64_t rng;
+  /* scratch of dem_bridge_max_overlap and dem_bridge_insert_cylinder, grown on demand */
+  int *cell_head, *cell_next;
+  size_t cell_cap, next_cap;
+  double *pos;
+  size_t pos_cap;
 };
 
-int dem_bridge_create(DemBridge **out) {
+/* ---------------------------------------------------------------- closed forms */
+
+double dem_rayleigh_dt(double diameter, double density, double young, double poisson) {
+  double G = young / (2.0 * (1.0 + poisson));
+  return M_PI * 0.5 * diameter * sqrt(density / G) / (0.1631 * poisson + 0.8766);
+}
+
+static double hertz_time(double mstar, double rstar, double estar, double v) {
+  return 2.87 * pow(mstar * mstar / (rstar * estar * estar * v), 0.2);
+}
+
+double dem_hertz_contact_time(double diameter, double density, double young, double poisson,
+                              double v) {
+  double R = 0.5 * diameter, m = density * 4.0 / 3.0 * M_PI * R * R * R;
+  return hertz_time(0.5 * m, 0.5 * R, young / (2.0 * (1.0 - poisson * poisson)), v);
+}
+
+double dem_hertz_wall_contact_time(double diameter, double density, double young, double poisson,
+                                   double wall_young, double wall_poisson, double v) {
+  double R = 0.5 * diameter, m = density * 4.0 / 3.0 * M_PI * R * R * R;
+  double estar =
+      1.0 / ((1.0 - poisson * poisson) / young + (1.0 - wall_poisson * wall_poisson) / wall_young);
+  return hertz_time(m, R, estar, v);
+}
+
+/* ---------------------------------------------------------------- helpers */
+
+static int send(DemBridge *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static int send(DemBridge *b, const char *fmt, ...) {
+  char buf[DEM_CMD_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  int n = vsnprintf(buf, sizeof buf, fmt, ap);
+  va_end(ap);
+  SA_REQUIRE(n >= 0 && n < (int)sizeof buf, SA_ERR_INTERNAL, "LIGGGHTS command too long: %.60s...",
+             buf);
+  lammps_command(b->lmp, buf);
+  return 0;
+}
+
+/* A path LIGGGHTS' input parser takes verbatim (no whitespace, comments, variables, quotes,
+ * continuation, or the * and % that write_restart expands). */
+static int path_is_plain(const char *s) {
+  if (!s || !*s) return 0;
+  for (; *s; s++)
+    if ((unsigned char)*s <= ' ' || strchr("#$*%&'\"", *s)) return 0;
+  return 1;
+}
+
+static int finite3(const double *x) {
+  return isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]);
+}
+
+static int inside_box(const DemParams *p, const double *x) {
+  for (int k = 0; k < 3; k++)
+    if (!(x[k] >= p->box_lo[k] && x[k] <= p->box_hi[k])) return 0;
+  return 1;
+}
+
+/* splitmix64: a small, well-mixed generator seeded from DemParams.seed. */
+static double rng_uniform(DemBridge *b) {
+  uint64_t z = (b->rng += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return (double)(z >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static int grow_int(int **a, size_t *cap, size_t n) {
+  if (n <= *cap) return 0;
+  size_t c = n + n / 2 + 16;
+  int *t = realloc(*a, c * sizeof *t);
+  SA_REQUIRE(t, SA_ERR_MEMORY, "cannot allocate %zu ints", c);
+  *a = t;
+  *cap = c;
+  return 0;
+}
+
+static int grow_double(double **a, size_t *cap, size_t n) {
+  if (n <= *cap) return 0;
+  size_t c = n + n / 2 + 16;
+  double *t = realloc(*a, c * sizeof *t);
+  SA_REQUIRE(t, SA_ERR_MEMORY, "cannot allocate %zu doubles", c);
+  *a = t;
+  *cap = c;
+  return 0;
+}
+
+/* Squared distance from point p to triangle (a, b, c) (Ericson, Real-Time Collision Detection,
+ * sec. 5.1.5: closest point by Voronoi region). */
+static double point_tri_dist2(const double *p, const double *a, const double *b, const double *c) {
+  double ab[3], ac[3], ap[3], q[3];
+  for (int k = 0; k < 3; k++) ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k];
+#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
+  double d1 = DOT(ab, ap), d2 = DOT(ac, ap);
+  if (d1 <= 0 && d2 <= 0) {
+    for (int k = 0; k < 3; k++) q[k] = a[k];
+    goto done;
+  }
+  double bp[3];
+  for (int k = 0; k < 3; k++) bp[k] = p[k] - b[k];
+  double d3 = DOT(ab, bp), d4 = DOT(ac, bp);
+  if (d3 >= 0 && d4 <= d3) {
+    for (int k = 0; k < 3; k++) q[k] = b[k];
+    goto done;
+  }
+  double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    double t = d1 / (d1 - d3);
+    for (int k = 0; k < 3; k++) q[k] = a[k] + t * ab[k];
+    goto done;
+  }
+  double cp[3];
+  for (int k = 0; k < 3; k++) cp[k] = p[k] - c[k];
+  double d5 = DOT(ab, cp), d6 = DOT(ac, cp);
+  if (d6 >= 0 && d5 <= d6) {
+    for (int k = 0; k < 3; k++) q[k] = c[k];
+    goto done;
+  }
+  double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    double t = d2 / (d2 - d6);
+    for (int k = 0; k < 3; k++) q[k] = a[k] + t * ac[k];
+    goto done;
+  }
+  double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    for (int k = 0; k < 3; k++) q[k] = b[k] + t * (c[k] - b[k]);
+    goto done;
+  }
+  {
+    double den = 1.0 / (va + vb + vc), v = vb * den, w = vc * den;
+    for (int k = 0; k < 3; k++) q[k] = a[k] + ab[k] * v + ac[k] * w;
+  }
+done:;
+  double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
+  return DOT(d, d);
+#undef DOT
+}
+
+/* ---------------------------------------------------------------- cell list */
+
+typedef struct {
+  double lo[3], h;
+  int n[3];
+} Grid;
+
+/* Bins npts points pts (3 each) into cells of size >= hmin over their bounding box (at most
+ * about 8 npts + 64 cells); b->cell_head / b->cell_next hold the lists (-1 ends). */
+static int grid_build(DemBridge *b, const double *pts, int npts, double hmin, Grid *g) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int i = 0; i < npts; i++)
+    for (int k = 0; k < 3; k++) {
+      if (pts[3 * i + k] < lo[k]) lo[k] = pts[3 * i + k];
+      if (pts[3 * i + k] > hi[k]) hi[k] = pts[3 * i + k];
+    }
+  if (npts == 0)
+    for (int k = 0; k < 3; k++) lo[k] = hi[k] = 0;
+  double h = hmin > 0 ? hmin : 1.0;
+  double maxcells = 8.0 * npts + 64.0;
+  for (;;) {
+    double nc = 1;
+    for (int k = 0; k < 3; k++) nc *= floor((hi[k] - lo[k]) / h) + 1;
+    if (nc <= maxcells) break;
+    h *= 1.26;
+  }
+  size_t ncell = 1;
+  for (int k = 0; k < 3; k++) {
+    g->lo[k] = lo[k];
+    g->n[k] = (int)floor((hi[k] - lo[k]) / h) + 1;
+    ncell *= (size_t)g->n[k];
+  }
+  g->h = h;
+  SA_CHECK(grow_int(&b->cell_head, &b->cell_cap, ncell));
+  SA_CHECK(grow_int(&b->cell_next, &b->next_cap, (size_t)npts + 1));
+  for (size_t c = 0; c < ncell; c++) b->cell_head[c] = -1;
+  for (int i = 0; i < npts; i++) {
+    int ci[3];
+    for (int k = 0; k < 3; k++) {
+      ci[k] = (int)((pts[3 * i + k] - g->lo[k]) / h);
+      if (ci[k] >= g->n[k]) ci[k] = g->n[k] - 1;
+    }
+    size_t c = ((size_t)ci[2] * g->n[1] + ci[1]) * g->n[0] + ci[0];
+    b->cell_next[i] = b->cell_head[c];
+    b->cell_head[c] = i;
+  }
+  return 0;
+}
+
+/* Cell index range [c0, c1] covering [xlo, xhi] along axis k. */
+static void grid_range(const Grid *g, int k, double xlo, double xhi, int *c0, int *c1) {
+  double a = floor((xlo - g->lo[k]) / g->h), z = floor((xhi - g->lo[k]) / g->h);
+  *c0 = a < 0 ? 0 : a >= g->n[k] ? g->n[k] : (int)a;
+  *c1 = z < 0 ? -1 : z >= g->n[k] ? g->n[k] - 1 : (int)z;
+}
+
+/* ---------------------------------------------------------------- lifecycle */
+
+int dem_bridge_create(const char *log_path, DemBridge **out) {
+  SA_REQUIRE(out, SA_ERR_INTERNAL, "dem_bridge_create: no output handle");
   *out = NULL;
+  if (log_path) {
+    /* LIGGGHTS aborts when it cannot open its log: try first. */
+    FILE *f = fopen(log_path, "w");
+    SA_REQUIRE(f, SA_ERR_IO, "cannot open the LIGGGHTS log file '%s'", log_path);
+    fclose(f);
+  }
   DemBridge *b;
   SA_CALLOC(b, 1);
-  /* -log none: LIGGGHTS writes log.liggghts by default; -screen none keeps stdout clean. */
-  char *argv[] = {"softact", "-log", "none", "-screen", "none", NULL};
+  const char *tmp = getenv("TMPDIR");
+  if (!tmp || !path_is_plain(tmp) || strlen(tmp) > 200) tmp = "/tmp";
+  snprintf(b->tmpdir, sizeof b->tmpdir, "%s/softact-dem-XXXXXX", tmp);
+  if (!mkdtemp(b->tmpdir)) {
+    free(b);
+    return SA_ERROR(SA_ERR_IO, "cannot create a temporary directory under %s", tmp);
+  }
+  /* -screen /dev/null, not none: parts of LIGGGHTS (the STL mesh reader) fprintf to the screen
+   * without checking it is open, which crashes with "none" */
+  char *argv[] = {"softact", "-log", log_path ? (char *)log_path : "none", "-screen", "/dev/null",
+                  NULL};
   lammps_open_no_mpi(5, argv, &b->lmp);
   if (!b->lmp) {
+    rmdir(b->tmpdir);
     free(b);
     return SA_ERROR(SA_ERR_LIBRARY, "LIGGGHTS failed to start");
   }
@@ -25,17 +287,697 @@ int dem_bridge_create(DemBridge **out) {
   return 0;
 }
 
+void dem_bridge_destroy(DemBridge **pb) {
+  if (!pb || !*pb) return;
+  DemBridge *b = *pb;
+  if (b->lmp) lammps_close(b->lmp);
+  for (int i = 0; i < b->nmesh; i++) {
+    free(b->mesh[i].xyz);
+    free(b->mesh[i].tri);
+    free(b->mesh[i].idx);
+  }
+  free(b->mesh);
+  free(b->cell_head);
+  free(b->cell_next);
+  free(b->pos);
+  rmdir(b->tmpdir);
+  free(b);
+  *pb = NULL;
+}
+
 int dem_bridge_command(DemBridge *b, const char *cmd) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(cmd, SA_ERR_INTERNAL, "no command");
   lammps_command(b->lmp, (char *)cmd);
+  b->need_setup = 1;
   return 0;
 }
 
-int dem_bridge_count(DemBridge *b) { return b && b->lmp ? lammps_get_natoms(b->lmp) : 0; }
+/* ---------------------------------------------------------------- set-up */
 
-void dem_bridge_destroy(DemBridge **b) {
-  if (!*b) return;
-  if ((*b)->lmp) lammps_close((*b)->lmp);
-  free(*b);
-  *b = NULL;
+/* Reports value v of field `name` outside [lo, hi] (open at an end when lo_open / hi_open). */
+static int check_range(const char *name, double v, double lo, int lo_open, double hi, int hi_open,
+                       const char *what) {
+  int ok = isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  if (ok) return 0;
+  char lo_s[64] = "", hi_s[64] = "";
+  if (isfinite(lo)) snprintf(lo_s, sizeof lo_s, "%s %g", lo_open ? ">" : ">=", lo);
+  if (isfinite(hi)) snprintf(hi_s, sizeof hi_s, "%s%s %g", *lo_s ? " and " : "", hi_open ? "<" : "<=", hi);
+  return SA_ERROR(SA_ERR_INPUT, "DEM parameter %s = %g is out of range: must be %s%s (%s)", name, v,
+                  lo_s, hi_s, what);
+}
+
+static int params_check(const DemParams *p) {
+  SA_REQUIRE(p, SA_ERR_INPUT, "no DEM parameters");
+  SA_CHECK(check_range("diameter", p->diameter, 0, 1, 1.0, 0, "grain diameter [m]"));
+  SA_CHECK(check_range("density", p->density, 0, 1, 1e5, 0, "grain density [kg/m^3]"));
+  SA_CHECK(check_range("young", p->young, 0, 1, 1e13, 0, "grain Young's modulus [Pa]"));
+  SA_CHECK(check_range("poisson", p->poisson, 0, 0, 0.5, 0, "grain Poisson ratio, LIGGGHTS' range"));
+  SA_CHECK(check_range("restitution", p->restitution, 0.05, 1, 1.0, 0,
+                       "coefficient of restitution, LIGGGHTS' range"));
+  SA_CHECK(check_range("friction", p->friction, 0, 0, 10, 0, "grain-grain Coulomb coefficient"));
+  SA_CHECK(check_range("friction_wall", p->friction_wall, 0, 0, 10, 0,
+                       "grain-silicone Coulomb coefficient"));
+  SA_CHECK(check_range("friction_piston", p->friction_piston, 0, 0, 10, 0,
+                       "grain-steel Coulomb coefficient"));
+  SA_CHECK(check_range("rolling_friction", p->rolling_friction, 0, 0, 10, 0,
+                       "rolling-resistance coefficient"));
+  SA_CHECK(check_range("wall_young", p->wall_young, 0, 1, 1e13, 0, "wall Young's modulus [Pa]"));
+  SA_CHECK(check_range("wall_poisson", p->wall_poisson, 0, 0, 0.5, 0,
+                       "wall Poisson ratio, LIGGGHTS' range"));
+  SA_CHECK(check_range("dt_safety", p->dt_safety, 0, 1, 1, 0, "fraction of the Rayleigh step"));
+  SA_CHECK(check_range("dt", p->dt, 0, 1, INFINITY, 0, "DEM time step [s]"));
+  double dtr = dem_rayleigh_dt(p->diameter, p->density, p->young, p->poisson);
+  if (p->dt > p->dt_safety * dtr)
+    return SA_ERROR(SA_ERR_INPUT,
+                    "DEM parameter dt = %g s is unsafe: must be <= dt_safety * Rayleigh time step "
+                    "= %g * %g s = %g s",
+                    p->dt, p->dt_safety, dtr, p->dt_safety * dtr);
+  static const char *gname[3] = {"gravity[0]", "gravity[1]", "gravity[2]"};
+  static const char *loname[3] = {"box_lo[0]", "box_lo[1]", "box_lo[2]"};
+  static const char *hiname[3] = {"box_hi[0]", "box_hi[1]", "box_hi[2]"};
+  for (int k = 0; k < 3; k++) {
+    SA_CHECK(check_range(gname[k], p->gravity[k], -1e4, 0, 1e4, 0, "gravity [m/s^2]"));
+    SA_CHECK(check_range(loname[k], p->box_lo[k], -1e3, 0, 1e3, 0, "box corner [m]"));
+    SA_CHECK(check_range(hiname[k], p->box_hi[k], p->box_lo[k] + p->diameter, 0, 1e3, 0,
+                         "box corner [m], at least one diameter above box_lo"));
+  }
+  SA_CHECK(check_range("skin", p->skin, 0, 1, 10 * p->diameter, 0,
+                       "neighbour skin [m], at most 10 diameters"));
+  SA_REQUIRE(p->seed > 0, SA_ERR_INPUT, "DEM parameter seed = %d is out of range: must be > 0",
+             p->seed);
+  return 0;
+}
+
+int dem_bridge_setup(DemBridge *b, const DemParams *params) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(!b->is_setup, SA_ERR_INPUT, "dem_bridge_setup called twice");
+  SA_CHECK(params_check(params));
+  const DemParams *p = params;
+  b->p = *p;
+  b->rng = (uint64_t)p->seed * 0x2545F4914F6CDD1Dull;
+  b->rolling = p->rolling_friction > 0;
+  static const char *pre[] = {
+      "units si", "atom_style granular", "atom_modify map array", "boundary f f f", "newton off",
+      "communicate single vel yes",
+      /* the softened grains and the steel walls are outside LIGGGHTS' sanity range */
+      "soft_particles yes", "hard_particles yes"};
+  for (size_t i = 0; i < sizeof pre / sizeof *pre; i++) SA_CHECK(send(b, "%s", pre[i]));
+  SA_CHECK(send(b, "region simbox block %.17g %.17g %.17g %.17g %.17g %.17g units box", p->box_lo[0],
+                p->box_hi[0], p->box_lo[1], p->box_hi[1], p->box_lo[2], p->box_hi[2]));
+  SA_CHECK(send(b, "create_box 3 simbox"));
+  SA_CHECK(send(b, "neighbor %.17g bin", p->skin));
+  SA_CHECK(send(b, "neigh_modify delay 0"));
+  SA_CHECK(send(b, "fix m1 all property/global youngsModulus peratomtype %.17g %.17g %.17g", p->young,
+                p->wall_young, p->wall_young));
+  SA_CHECK(send(b, "fix m2 all property/global poissonsRatio peratomtype %.17g %.17g %.17g",
+                p->poisson, p->wall_poisson, p->wall_poisson));
+  double e = p->restitution;
+  SA_CHECK(send(b,
+                "fix m3 all property/global coefficientRestitution peratomtypepair 3 "
+                "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g",
+                e, e, e, e, e, e, e, e, e));
+  /* wall-wall entries never act; they repeat the grain-wall values */
+  double mu = p->friction, mw = p->friction_wall, mp = p->friction_piston;
+  SA_CHECK(send(b,
+                "fix m4 all property/global coefficientFriction peratomtypepair 3 "
+                "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g",
+                mu, mw, mp, mw, mw, mp, mp, mp, mp));
+  double r = p->rolling_friction;
+  SA_CHECK(send(b,
+                "fix m5 all property/global coefficientRollingFriction peratomtypepair 3 "
+                "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g",
+                r, r, r, r, r, r, r, r, r));
+  /* rolling resistance off when its coefficient is 0 (same result, less work) */
+  SA_CHECK(send(b, "pair_style gran model hertz tangential history%s",
+                b->rolling ? " rolling_friction epsd2" : ""));
+  SA_CHECK(send(b, "pair_coeff * *"));
+  SA_CHECK(send(b, "fix integr all nve/sphere"));
+  double g = sqrt(p->gravity[0] * p->gravity[0] + p->gravity[1] * p->gravity[1] +
+                  p->gravity[2] * p->gravity[2]);
+  if (g > 0)
+    SA_CHECK(send(b, "fix grav all gravity %.17g vector %.17g %.17g %.17g", g, p->gravity[0] / g,
+                  p->gravity[1] / g, p->gravity[2] / g));
+  SA_CHECK(send(b, "timestep %.17g", p->dt));
+  SA_CHECK(send(b, "thermo_modify lost ignore norm no"));
+  b->is_setup = 1;
+  b->need_setup = 1;
+  return 0;
+}
+
+/* ---------------------------------------------------------------- wall meshes */
+
+static int name_ok(const char *s) {
+  size_t n = s ? strlen(s) : 0;
+  if (n == 0 || n > DEM_NAME_MAX) return 0;
+  for (; *s; s++)
+    if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9') ||
+          *s == '_'))
+      return 0;
+  return 1;
+}
+
+/* Smallest angle of triangle (a, b, c) [rad]. */
+static double min_angle(const double *a, const double *b, const double *c) {
+  const double *v[3] = {a, b, c};
+  double amin = M_PI;
+  for (int i = 0; i < 3; i++) {
+    const double *o = v[i], *p = v[(i + 1) % 3], *q = v[(i + 2) % 3];
+    double u[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+    double w[3] = {q[0] - o[0], q[1] - o[1], q[2] - o[2]};
+    double uw = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+    double cr[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    double s = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
+    double ang = atan2(s, uw);
+    if (ang < amin) amin = ang;
+  }
+  return amin;
+}
+
+static int cmp_int3(const void *x, const void *y) {
+  const int *a = x, *b = y;
+  for (int k = 0; k < 3; k++)
+    if (a[k] != b[k]) return a[k] < b[k] ? -1 : 1;
+  return 0;
+}
+
+static int sort3(int *t) {
+  int s;
+  if (t[0] > t[1]) s = t[0], t[0] = t[1], t[1] = s;
+  if (t[1] > t[2]) s = t[1], t[1] = t[2], t[2] = s;
+  if (t[0] > t[1]) s = t[0], t[0] = t[1], t[1] = s;
+  return 0;
+}
+
+static int mesh_check(const DemBridge *b, const char *name, int nverts, const double *xyz, int ntri,
+                      const int *tri) {
+  SA_REQUIRE(name_ok(name), SA_ERR_INPUT,
+             "mesh name '%s' is not valid: 1 to %d letters, digits or '_'", name ? name : "(null)",
+             DEM_NAME_MAX);
+  for (int i = 0; i < b->nmesh; i++)
+    SA_REQUIRE(strcmp(b->mesh[i].fix_id + 5, name), SA_ERR_INPUT, "mesh name '%s' used twice",
+               name);
+  SA_REQUIRE(nverts >= 3 && ntri >= 1 && xyz && tri, SA_ERR_INPUT,
+             "mesh '%s': needs at least 3 vertices and 1 triangle (got %d, %d)", name, nverts, ntri);
+  for (int v = 0; v < nverts; v++) {
+    SA_REQUIRE(finite3(xyz + 3 * v), SA_ERR_INPUT, "mesh '%s': vertex %d is not finite", name, v);
+    SA_REQUIRE(inside_box(&b->p, xyz + 3 * v), SA_ERR_INPUT,
+               "mesh '%s': vertex %d (%g, %g, %g) is outside the DEM box", name, v, xyz[3 * v],
+               xyz[3 * v + 1], xyz[3 * v + 2]);
+  }
+  for (int t = 0; t < ntri; t++) {
+    const int *k = tri + 3 * t;
+    for (int c = 0; c < 3; c++)
+      SA_REQUIRE(k[c] >= 0 && k[c] < nverts, SA_ERR_INPUT,
+                 "mesh '%s': triangle %d names vertex %d (there are %d)", name, t, k[c], nverts);
+    SA_REQUIRE(k[0] != k[1] && k[1] != k[2] && k[0] != k[2], SA_ERR_INPUT,
+               "mesh '%s': triangle %d repeats a vertex", name, t);
+    double a = min_angle(xyz + 3 * k[0], xyz + 3 * k[1], xyz + 3 * k[2]);
+    /* LIGGGHTS refuses an angle below ~0.06 degree and merges nodes closer than 1e-8 m */
+    SA_REQUIRE(a > 0.1 * M_PI / 180, SA_ERR_INPUT,
+               "mesh '%s': triangle %d is degenerate (smallest angle %g degree, must be > 0.1)",
+               name, t, a * 180 / M_PI);
+    for (int c = 0; c < 3; c++) {
+      const double *p = xyz + 3 * k[c], *q = xyz + 3 * k[(c + 1) % 3];
+      double d = fmax(fmax(fabs(p[0] - q[0]), fabs(p[1] - q[1])), fabs(p[2] - q[2]));
+      SA_REQUIRE(d > 1e-7, SA_ERR_INPUT,
+                 "mesh '%s': triangle %d has an edge of %g m (LIGGGHTS merges nodes closer than "
+                 "1e-8 m; must be > 1e-7 m)",
+                 name, t, d);
+    }
+  }
+  /* duplicate triangles (same three vertices): LIGGGHTS aborts on them */
+  int *s = malloc(3 * (size_t)ntri * sizeof *s);
+  SA_REQUIRE(s, SA_ERR_MEMORY, "cannot allocate %d ints", 3 * ntri);
+  memcpy(s, tri, 3 * (size_t)ntri * sizeof *s);
+  for (int t = 0; t < ntri; t++) sort3(s + 3 * t);
+  qsort(s, ntri, 3 * sizeof *s, cmp_int3);
+  int dup = -1;
+  for (int t = 1; t < ntri && dup < 0; t++)
+    if (!cmp_int3(s + 3 * t, s + 3 * (t - 1))) dup = t;
+  int dv[3] = {0, 0, 0};
+  if (dup >= 0) memcpy(dv, s + 3 * dup, sizeof dv);
+  free(s);
+  SA_REQUIRE(dup < 0, SA_ERR_INPUT, "mesh '%s': two triangles share vertices %d %d %d", name, dv[0],
+             dv[1], dv[2]);
+  return 0;
+}
+
+int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double *xyz, int ntri,
+                        const int *tri, DemWallType type, int *id) {
+  SA_REQUIRE(b && b->lmp && id, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_add_mesh before dem_bridge_setup");
+  SA_REQUIRE(!b->walls_done, SA_ERR_INPUT,
+             "dem_bridge_add_mesh after the walls were finalized (first run)");
+  SA_REQUIRE(type == DEM_WALL_SILICONE || type == DEM_WALL_STEEL, SA_ERR_INPUT,
+             "mesh '%s': wall type %d is neither DEM_WALL_SILICONE nor DEM_WALL_STEEL",
+             name ? name : "", (int)type);
+  SA_CHECK(mesh_check(b, name, nverts, xyz, ntri, tri));
+  if (b->nmesh == b->mesh_cap) {
+    int cap = b->mesh_cap ? 2 * b->mesh_cap : 4;
+    DemMesh *t = realloc(b->mesh, (size_t)cap * sizeof *t);
+    SA_REQUIRE(t, SA_ERR_MEMORY, "cannot allocate %d meshes", cap);
+    b->mesh = t;
+    b->mesh_cap = cap;
+  }
+  DemMesh *m = &b->mesh[b->nmesh];
+  memset(m, 0, sizeof *m);
+  snprintf(m->fix_id, sizeof m->fix_id, "mesh_%s", name);
+  m->type = type;
+  m->nverts = nverts;
+  m->ntri = ntri;
+  m->xyz = malloc(3 * (size_t)nverts * sizeof *m->xyz);
+  m->tri = malloc(3 * (size_t)ntri * sizeof *m->tri);
+  m->idx = malloc(3 * (size_t)ntri * sizeof *m->idx);
+  if (!m->xyz || !m->tri || !m->idx) {
+    free(m->xyz), free(m->tri), free(m->idx);
+    return SA_ERROR(SA_ERR_MEMORY, "mesh '%s': cannot allocate %d vertices", name, nverts);
+  }
+  memcpy(m->xyz, xyz, 3 * (size_t)nverts * sizeof *xyz);
+  memcpy(m->tri, tri, 3 * (size_t)ntri * sizeof *tri);
+  memcpy(m->idx, tri, 3 * (size_t)ntri * sizeof *tri);
+
+  char path[320];
+  snprintf(path, sizeof path, "%s/%s.stl", b->tmpdir, name);
+  FILE *f = fopen(path, "w");
+  int ok = f != NULL;
+  if (ok) {
+    fprintf(f, "solid %s\n", name);
+    for (int t = 0; t < ntri; t++) {
+      fprintf(f, " facet normal 0 0 0\n  outer loop\n");
+      for (int c = 0; c < 3; c++) {
+        const double *p = xyz + 3 * tri[3 * t + c];
+        fprintf(f, "   vertex %.17g %.17g %.17g\n", p[0], p[1], p[2]);
+      }
+      fprintf(f, "  endloop\n endfacet\n");
+    }
+    fprintf(f, "endsolid %s\n", name);
+    ok = !ferror(f);
+    ok = (fclose(f) == 0) && ok;
+  }
+  if (!ok) {
+    remove(path);
+    free(m->xyz), free(m->tri), free(m->idx);
+    return SA_ERROR(SA_ERR_IO, "cannot write the temporary mesh file %s", path);
+  }
+  /* LIGGGHTS reads the file while creating the fix */
+  int rc = send(b, "fix %s all mesh/surface/stress file %s type %d stress on", m->fix_id, path,
+                (int)type);
+  remove(path);
+  if (rc) {
+    free(m->xyz), free(m->tri), free(m->idx);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  b->nmesh++;
+  m->shim = dem_shim_mesh(b->lmp, m->fix_id);
+  SA_REQUIRE(m->shim, SA_ERR_LIBRARY, "LIGGGHTS did not create mesh '%s'", name);
+  int n = dem_shim_mesh_size(m->shim);
+  SA_REQUIRE(n == ntri, SA_ERR_LIBRARY, "LIGGGHTS read %d of the %d triangles of mesh '%s'", n,
+             ntri, name);
+  SA_REQUIRE(dem_shim_mesh_make_moving(m->shim) == 0, SA_ERR_LIBRARY,
+             "cannot make mesh '%s' movable", name);
+  b->need_setup = 1;
+  *id = b->nmesh - 1;
+  return 0;
+}
+
+/* Checks LIGGGHTS' triangles against the caller's, element id by id, and records for each
+ * (id, corner) the caller vertex there (LIGGGHTS keeps the file's corner order; checked). */
+static int mesh_map(DemBridge *b, DemMesh *m) {
+  int n = dem_shim_mesh_size(m->shim);
+  SA_REQUIRE(n == m->ntri, SA_ERR_LIBRARY, "mesh '%s': LIGGGHTS holds %d of %d triangles",
+             m->fix_id + 5, n, m->ntri);
+  double ext = 0;
+  for (int k = 0; k < 3; k++) ext = fmax(ext, b->p.box_hi[k] - b->p.box_lo[k]);
+  double tol = 1e-12 * ext;
+  for (int i = 0; i < n; i++) {
+    int id = dem_shim_mesh_id(m->shim, i);
+    SA_REQUIRE(id >= 0 && id < m->ntri, SA_ERR_LIBRARY, "mesh '%s': element id %d out of range",
+               m->fix_id + 5, id);
+    for (int c = 0; c < 3; c++) {
+      double x[3];
+      dem_shim_mesh_node(m->shim, i, c, x);
+      int found = -1;
+      for (int cc = 0; cc < 3 && found < 0; cc++) {
+        const double *p = m->xyz + 3 * m->tri[3 * id + cc];
+        if (fabs(p[0] - x[0]) <= tol && fabs(p[1] - x[1]) <= tol && fabs(p[2] - x[2]) <= tol)
+          found = m->tri[3 * id + cc];
+      }
+      SA_REQUIRE(found >= 0, SA_ERR_LIBRARY,
+                 "mesh '%s': LIGGGHTS' triangle %d corner %d (%g, %g, %g) is not a corner of the "
+                 "caller's triangle %d",
+                 m->fix_id + 5, id, c, x[0], x[1], x[2], id);
+      m->idx[3 * id + c] = found;
+    }
+  }
+  return 0;
+}
+
+int dem_bridge_finalize_walls(DemBridge *b) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_finalize_walls before dem_bridge_setup");
+  if (b->walls_done) return 0;
+  b->walls_done = 1;
+  if (b->nmesh == 0) return 0;
+  char list[DEM_CMD_MAX / 2] = "";
+  size_t len = 0;
+  for (int i = 0; i < b->nmesh; i++) {
+    int n = snprintf(list + len, sizeof list - len, " %s", b->mesh[i].fix_id);
+    SA_REQUIRE(n > 0 && len + n < sizeof list, SA_ERR_INPUT, "too many wall meshes (%d)", b->nmesh);
+    len += n;
+  }
+  SA_CHECK(send(b, "fix walls all wall/gran model hertz tangential history%s mesh n_meshes %d meshes%s",
+                b->rolling ? " rolling_friction epsd2" : "", b->nmesh, list));
+  /* a set-up pass (LIGGGHTS distributes and may reorder the mesh elements there) */
+  SA_CHECK(send(b, "run 0 post no"));
+  b->ran = 1;
+  b->need_setup = 0;
+  for (int i = 0; i < b->nmesh; i++) SA_CHECK(mesh_map(b, &b->mesh[i]));
+  return 0;
+}
+
+static int mesh_get(DemBridge *b, int id, DemMesh **m) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(id >= 0 && id < b->nmesh, SA_ERR_INPUT, "no wall mesh %d (there are %d)", id,
+             b->nmesh);
+  *m = &b->mesh[id];
+  return 0;
+}
+
+int dem_bridge_mesh_ntri(DemBridge *b, int id) {
+  return b && id >= 0 && id < b->nmesh ? b->mesh[id].ntri : 0;
+}
+
+int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const double *v) {
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  SA_REQUIRE(xyz, SA_ERR_INPUT, "mesh '%s': no node positions", m->fix_id + 5);
+  for (int i = 0; i < m->nverts; i++) {
+    SA_REQUIRE(finite3(xyz + 3 * i) && (!v || finite3(v + 3 * i)), SA_ERR_NAN,
+               "mesh '%s': node %d position or velocity is not finite", m->fix_id + 5, i);
+    SA_REQUIRE(inside_box(&b->p, xyz + 3 * i), SA_ERR_DOMAIN,
+               "mesh '%s': node %d (%g, %g, %g) left the DEM box", m->fix_id + 5, i, xyz[3 * i],
+               xyz[3 * i + 1], xyz[3 * i + 2]);
+  }
+  memcpy(m->xyz, xyz, 3 * (size_t)m->nverts * sizeof *xyz);
+  dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, v);
+  return 0;
+}
+
+int dem_bridge_mesh_forces(DemBridge *b, int id, double *f) {
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  SA_REQUIRE(f, SA_ERR_INPUT, "mesh '%s': no output array", m->fix_id + 5);
+  if (!b->ran) {
+    memset(f, 0, 3 * (size_t)m->ntri * sizeof *f);
+    return 0;
+  }
+  SA_REQUIRE(dem_shim_mesh_forces(m->shim, f) == 0, SA_ERR_LIBRARY,
+             "mesh '%s' has no force (stress) data", m->fix_id + 5);
+  return 0;
+}
+
+int dem_bridge_mesh_nodes(DemBridge *b, int id, double *xyz) {
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  int n = dem_shim_mesh_size(m->shim);
+  for (int i = 0; i < 3 * m->nverts; i++) xyz[i] = NAN;
+  for (int i = 0; i < n; i++) {
+    int t = dem_shim_mesh_id(m->shim, i);
+    for (int c = 0; c < 3; c++) {
+      double x[3];
+      dem_shim_mesh_node(m->shim, i, c, x);
+      double *o = xyz + 3 * m->idx[3 * t + c];
+      if (isnan(o[0])) {
+        memcpy(o, x, sizeof x);
+        continue;
+      }
+      SA_REQUIRE(o[0] == x[0] && o[1] == x[1] && o[2] == x[2], SA_ERR_INTERNAL,
+                 "mesh '%s': the copies of vertex %d disagree in LIGGGHTS", m->fix_id + 5,
+                 m->idx[3 * t + c]);
+    }
+  }
+  return 0;
+}
+
+/* ---------------------------------------------------------------- grains */
+
+static int nlocal(DemBridge *b) {
+  int *n = lammps_extract_global(b->lmp, "nlocal");
+  return n ? *n : 0;
+}
+
+int dem_bridge_count(DemBridge *b) { return b && b->lmp ? nlocal(b) : 0; }
+
+/* Smallest distance from x to any wall triangle, less than `than` (else `than`). */
+static double wall_dist(const DemBridge *b, const double *x, double than) {
+  double best2 = than * than;
+  for (int i = 0; i < b->nmesh; i++) {
+    const DemMesh *m = &b->mesh[i];
+    for (int t = 0; t < m->ntri; t++) {
+      const double *p0 = m->xyz + 3 * m->tri[3 * t], *p1 = m->xyz + 3 * m->tri[3 * t + 1],
+                   *p2 = m->xyz + 3 * m->tri[3 * t + 2];
+      int skip = 0;
+      for (int k = 0; k < 3 && !skip; k++) {
+        double lo = fmin(fmin(p0[k], p1[k]), p2[k]), hi = fmax(fmax(p0[k], p1[k]), p2[k]);
+        skip = x[k] < lo - than || x[k] > hi + than;
+      }
+      if (skip) continue;
+      double d2 = point_tri_dist2(x, p0, p1, p2);
+      if (d2 < best2) best2 = d2;
+    }
+  }
+  return sqrt(best2);
+}
+
+int dem_bridge_insert_cylinder(DemBridge *b, double cx, double cy, double r, double z_lo,
+                               double z_hi, int n, int *inserted) {
+  SA_REQUIRE(b && b->lmp && inserted, SA_ERR_INTERNAL, "DEM bridge not started");
+  *inserted = 0;
+  SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_insert_cylinder before dem_bridge_setup");
+  const DemParams *p = &b->p;
+  double R = 0.5 * p->diameter;
+  SA_REQUIRE(n >= 0, SA_ERR_INPUT, "insert: n = %d grains, must be >= 0", n);
+  SA_REQUIRE(isfinite(cx) && isfinite(cy) && isfinite(z_lo) && isfinite(z_hi) && isfinite(r),
+             SA_ERR_INPUT, "insert: the cylinder is not finite");
+  SA_REQUIRE(r >= R && z_hi - z_lo >= p->diameter, SA_ERR_INPUT,
+             "insert: cylinder radius %g m and height %g m must hold one grain (diameter %g m)", r,
+             z_hi - z_lo, p->diameter);
+  SA_REQUIRE(cx - r >= p->box_lo[0] && cx + r <= p->box_hi[0] && cy - r >= p->box_lo[1] &&
+                 cy + r <= p->box_hi[1] && z_lo >= p->box_lo[2] && z_hi <= p->box_hi[2],
+             SA_ERR_INPUT, "insert: the cylinder (%g, %g) r %g, z %g..%g is not inside the DEM box",
+             cx, cy, r, z_lo, z_hi);
+  if (n == 0) return 0;
+
+  /* existing grains + candidates in one array; a uniform grid of cell 2R rebuilt per pass is
+   * avoided: the grid covers the cylinder and is filled incrementally. */
+  int n0 = nlocal(b);
+  SA_CHECK(grow_double(&b->pos, &b->pos_cap, 3 * ((size_t)n0 + n)));
+  double **x = lammps_extract_atom(b->lmp, "x");
+  double *rad = lammps_extract_atom(b->lmp, "radius");
+  double rmax = R;
+  for (int i = 0; i < n0; i++) {
+    memcpy(b->pos + 3 * i, x[i], 3 * sizeof(double));
+    if (rad && rad[i] > rmax) rmax = rad[i];
+  }
+  Grid g;
+  double h = 2 * rmax;
+  g.h = h;
+  g.lo[0] = cx - r - h, g.lo[1] = cy - r - h, g.lo[2] = z_lo - h;
+  g.n[0] = g.n[1] = (int)ceil((2 * r + 2 * h) / h) + 1;
+  g.n[2] = (int)ceil((z_hi - z_lo + 2 * h) / h) + 1;
+  size_t ncell = (size_t)g.n[0] * g.n[1] * g.n[2];
+  SA_REQUIRE(ncell < (size_t)1 << 28, SA_ERR_INPUT, "insert: the cylinder is too large (%zu cells)",
+             ncell);
+  SA_CHECK(grow_int(&b->cell_head, &b->cell_cap, ncell));
+  SA_CHECK(grow_int(&b->cell_next, &b->next_cap, (size_t)n0 + n + 1));
+  for (size_t c = 0; c < ncell; c++) b->cell_head[c] = -1;
+  int np = 0;
+#define CELL_OF(q, ci)                                                 \
+  do {                                                                 \
+    for (int k_ = 0; k_ < 3; k_++) {                                   \
+      int c_ = (int)floor(((q)[k_] - g.lo[k_]) / h);                   \
+      (ci)[k_] = c_ < 0 ? 0 : c_ >= g.n[k_] ? g.n[k_] - 1 : c_;         \
+    }                                                                  \
+  } while (0)
+  for (int i = 0; i < n0; i++) {
+    const double *q = b->pos + 3 * i;
+    if (q[0] < g.lo[0] || q[1] < g.lo[1] || q[2] < g.lo[2] || q[0] > g.lo[0] + g.n[0] * h ||
+        q[1] > g.lo[1] + g.n[1] * h || q[2] > g.lo[2] + g.n[2] * h)
+      continue;
+    int ci[3];
+    CELL_OF(q, ci);
+    size_t c = ((size_t)ci[2] * g.n[1] + ci[1]) * g.n[0] + ci[0];
+    b->cell_next[i] = b->cell_head[c];
+    b->cell_head[c] = i;
+  }
+  np = n0;
+  long attempts = 0, max_attempts = 1000L * n + 10000;
+  double rr = r - R;
+  while (np - n0 < n && attempts < max_attempts) {
+    attempts++;
+    double q[3], ux, uy;
+    do {
+      ux = 2 * rng_uniform(b) - 1, uy = 2 * rng_uniform(b) - 1;
+    } while (ux * ux + uy * uy > 1);
+    q[0] = cx + rr * ux, q[1] = cy + rr * uy;
+    q[2] = z_lo + R + (z_hi - z_lo - 2 * R) * rng_uniform(b);
+    int ci[3], ok = 1;
+    CELL_OF(q, ci);
+    for (int dz = -1; dz <= 1 && ok; dz++)
+      for (int dy = -1; dy <= 1 && ok; dy++)
+        for (int dx = -1; dx <= 1 && ok; dx++) {
+          int a = ci[0] + dx, bb = ci[1] + dy, c = ci[2] + dz;
+          if (a < 0 || bb < 0 || c < 0 || a >= g.n[0] || bb >= g.n[1] || c >= g.n[2]) continue;
+          for (int j = b->cell_head[((size_t)c * g.n[1] + bb) * g.n[0] + a]; j >= 0 && ok;
+               j = b->cell_next[j]) {
+            const double *o = b->pos + 3 * j;
+            double rj = j < n0 && rad ? rad[j] : R;
+            double d2 = (q[0] - o[0]) * (q[0] - o[0]) + (q[1] - o[1]) * (q[1] - o[1]) +
+                        (q[2] - o[2]) * (q[2] - o[2]);
+            if (d2 < (R + rj) * (R + rj)) ok = 0;
+          }
+        }
+    if (!ok || wall_dist(b, q, R) < R) continue;
+    memcpy(b->pos + 3 * np, q, sizeof q);
+    size_t c = ((size_t)ci[2] * g.n[1] + ci[1]) * g.n[0] + ci[0];
+    b->cell_next[np] = b->cell_head[c];
+    b->cell_head[c] = np;
+    np++;
+  }
+#undef CELL_OF
+  for (int i = n0; i < np; i++)
+    SA_CHECK(send(b, "create_atoms 1 single %.17g %.17g %.17g units box", b->pos[3 * i],
+                  b->pos[3 * i + 1], b->pos[3 * i + 2]));
+  /* every grain has the same size and density: set them on type 1 as a whole */
+  SA_CHECK(send(b, "set type 1 diameter %.17g", p->diameter));
+  SA_CHECK(send(b, "set type 1 density %.17g", p->density));
+  *inserted = nlocal(b) - n0;
+  SA_REQUIRE(*inserted == np - n0, SA_ERR_LIBRARY, "LIGGGHTS created %d of %d grains", *inserted,
+             np - n0);
+  b->need_setup = 1;
+  return 0;
+}
+
+int dem_bridge_run(DemBridge *b, int nsteps) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_run before dem_bridge_setup");
+  SA_REQUIRE(nsteps >= 0, SA_ERR_INPUT, "dem_bridge_run: nsteps = %d, must be >= 0", nsteps);
+  SA_CHECK(dem_bridge_finalize_walls(b));
+  if (nsteps == 0) return 0;
+  /* the full set-up (neighbour lists from scratch, fix set-up) only when something changed */
+  SA_CHECK(send(b, "run %d pre %s post no", nsteps, b->need_setup || !b->ran ? "yes" : "no"));
+  b->ran = 1;
+  b->need_setup = 0;
+  return 0;
+}
+
+int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *radius) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  int n = nlocal(b);
+  double **src[3] = {x ? lammps_extract_atom(b->lmp, "x") : NULL,
+                     v ? lammps_extract_atom(b->lmp, "v") : NULL,
+                     f ? lammps_extract_atom(b->lmp, "f") : NULL};
+  double *dst[3] = {x, v, f};
+  for (int a = 0; a < 3; a++) {
+    if (!dst[a]) continue;
+    SA_REQUIRE(src[a] || n == 0, SA_ERR_LIBRARY, "LIGGGHTS has no per-atom array %d", a);
+    for (int i = 0; i < n; i++) memcpy(dst[a] + 3 * i, src[a][i], 3 * sizeof(double));
+  }
+  if (radius) {
+    double *r = lammps_extract_atom(b->lmp, "radius");
+    SA_REQUIRE(r || n == 0, SA_ERR_LIBRARY, "LIGGGHTS has no radius array");
+    if (n) memcpy(radius, r, (size_t)n * sizeof *r);
+  }
+  return 0;
+}
+
+double dem_bridge_kinetic_energy(DemBridge *b) {
+  if (!b || !b->lmp) return 0;
+  int n = nlocal(b);
+  double **v = lammps_extract_atom(b->lmp, "v"), **w = lammps_extract_atom(b->lmp, "omega");
+  double *m = lammps_extract_atom(b->lmp, "rmass"), *r = lammps_extract_atom(b->lmp, "radius");
+  if (!v || !m) return 0;
+  double e = 0;
+  for (int i = 0; i < n; i++) {
+    e += 0.5 * m[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+    if (w && r) /* solid sphere: I = 2/5 m r^2 */
+      e += 0.2 * m[i] * r[i] * r[i] * (w[i][0] * w[i][0] + w[i][1] * w[i][1] + w[i][2] * w[i][2]);
+  }
+  return e;
+}
+
+double dem_bridge_max_overlap(DemBridge *b) {
+  if (!b || !b->lmp) return 0;
+  int n = nlocal(b);
+  if (n == 0) return 0;
+  double **x = lammps_extract_atom(b->lmp, "x");
+  double *rad = lammps_extract_atom(b->lmp, "radius");
+  if (!x || !rad) return NAN;
+  if (grow_double(&b->pos, &b->pos_cap, 3 * (size_t)n)) return NAN;
+  double rmax = 0;
+  for (int i = 0; i < n; i++) {
+    memcpy(b->pos + 3 * i, x[i], 3 * sizeof(double));
+    if (rad[i] > rmax) rmax = rad[i];
+  }
+  Grid g;
+  if (grid_build(b, b->pos, n, 2 * rmax, &g)) return NAN;
+  double worst = 0; /* largest overlap / diameter */
+  /* grain-grain: each pair once (j < i) in the 27 neighbouring cells */
+  for (int i = 0; i < n; i++) {
+    const double *p = b->pos + 3 * i;
+    int c0[3], c1[3];
+    for (int k = 0; k < 3; k++) grid_range(&g, k, p[k] - 2 * rmax, p[k] + 2 * rmax, c0 + k, c1 + k);
+    for (int cz = c0[2]; cz <= c1[2]; cz++)
+      for (int cy = c0[1]; cy <= c1[1]; cy++)
+        for (int cx = c0[0]; cx <= c1[0]; cx++)
+          for (int j = b->cell_head[((size_t)cz * g.n[1] + cy) * g.n[0] + cx]; j >= 0;
+               j = b->cell_next[j]) {
+            if (j >= i) continue;
+            const double *q = b->pos + 3 * j;
+            double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                        (p[2] - q[2]) * (p[2] - q[2]);
+            double s = rad[i] + rad[j];
+            if (d2 >= s * s) continue;
+            double ov = (s - sqrt(d2)) / fmin(2 * rad[i], 2 * rad[j]);
+            if (ov > worst) worst = ov;
+          }
+  }
+  /* grain-wall: the grains in the cells that a triangle's box (grown by rmax) touches */
+  for (int im = 0; im < b->nmesh; im++) {
+    const DemMesh *m = &b->mesh[im];
+    for (int t = 0; t < m->ntri; t++) {
+      const double *p0 = m->xyz + 3 * m->tri[3 * t], *p1 = m->xyz + 3 * m->tri[3 * t + 1],
+                   *p2 = m->xyz + 3 * m->tri[3 * t + 2];
+      int c0[3], c1[3];
+      for (int k = 0; k < 3; k++)
+        grid_range(&g, k, fmin(fmin(p0[k], p1[k]), p2[k]) - rmax,
+                   fmax(fmax(p0[k], p1[k]), p2[k]) + rmax, c0 + k, c1 + k);
+      for (int cz = c0[2]; cz <= c1[2]; cz++)
+        for (int cy = c0[1]; cy <= c1[1]; cy++)
+          for (int cx = c0[0]; cx <= c1[0]; cx++)
+            for (int j = b->cell_head[((size_t)cz * g.n[1] + cy) * g.n[0] + cx]; j >= 0;
+                 j = b->cell_next[j]) {
+              double d2 = point_tri_dist2(b->pos + 3 * j, p0, p1, p2);
+              if (d2 >= rad[j] * rad[j]) continue;
+              double ov = (rad[j] - sqrt(d2)) / (2 * rad[j]);
+              if (ov > worst) worst = ov;
+            }
+    }
+  }
+  return worst;
+}
+
+int dem_bridge_write_restart(DemBridge *b, const char *path) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_write_restart before dem_bridge_setup");
+  SA_REQUIRE(path_is_plain(path) && strlen(path) < DEM_CMD_MAX - 64, SA_ERR_INPUT,
+             "restart path '%s' must be non-empty, without whitespace or any of # $ * %% & ' \"",
+             path ? path : "(null)");
+  /* LIGGGHTS aborts if it cannot open the file: try first */
+  FILE *f = fopen(path, "wb");
+  SA_REQUIRE(f, SA_ERR_IO, "cannot open the restart file '%s'", path);
+  fclose(f);
+  SA_CHECK(send(b, "write_restart %s", path));
+  return 0;
 }

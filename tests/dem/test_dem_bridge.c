@@ -8,7 +8,7 @@
 
 int main(void) {
   DemBridge *b = NULL;
-  if (dem_bridge_create(&b)) {
+  if (dem_bridge_create(NULL, &b)) {
     sa_error_print();
     return 1;
   }

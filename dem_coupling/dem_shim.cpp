@@ -1,0 +1,135 @@
+/* dem_shim.cpp - the LIGGGHTS internals behind dem_shim.h: node-by-node motion of a wall mesh
+ * and per-triangle forces of a `fix mesh/surface/stress`.
+ *
+ * LIGGGHTS moves meshes only rigidly (fix move/mesh); a deforming FEM wall needs every node set.
+ * What a rigid mover does each step is repeated here for arbitrary node positions:
+ *   - the mesh is registered as moving before the first run (MultiNodeMesh::registerMove), so
+ *     LIGGGHTS keeps the node positions of the last neighbour build and treats the triangle
+ *     neighbour lists with the skin (FixNeighlistMesh), and the wall contact reads the
+ *     per-node velocity property `v` (FixWallGran::post_force_mesh);
+ *   - after the nodes are overwritten, centres and bounding radii (updateCenterRbound) and
+ *     edge vectors, normals and areas (SurfaceMesh::recalcLocalSurfProperties, protected:
+ *     reached through a pointer to member named in a derived class, which is legal C++) are
+ *     recomputed;
+ *   - MultiNodeMesh::decideRebuild (a node moved more than half the skin since the last build)
+ *     requests a neighbour rebuild at the next step through the fix's next_reneighbor, as
+ *     FixMesh::pre_force would one step later.
+ * Forces: the stress module sums the force of every grain contact into the element property
+ * `f` (MeshModuleStress::add_particle_contribution), cleared every step. */
+#include "dem_shim.h"
+
+#include <lammps.h>
+#include <modify.h>
+#include <update.h>
+#include <fix.h>
+#include <fix_mesh_surface.h>
+#include <tri_mesh.h>
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+/* Names protected members of a TriMesh's bases (surface properties, node container) so that
+ * they can be reached on a TriMesh; never instantiated. */
+struct SurfaceAccess : TriMesh {
+  static void recalc(TriMesh *m) {
+    void (SurfaceMeshBase::*local)() = &SurfaceAccess::recalcLocalSurfProperties;
+    void (SurfaceMeshBase::*ghost)() = &SurfaceAccess::recalcGhostSurfProperties;
+    (m->*local)();
+    if (m->sizeGhost() > 0) (m->*ghost)();
+  }
+  /* The node container (MultiNodeMesh::nodePtr is private). */
+  static double ***nodes(TriMesh *m) {
+    MultiVectorContainer<double, 3, 3> MultiNodeMesh<3>::*node = &SurfaceAccess::node_;
+    return (m->*node).begin();
+  }
+};
+
+FixMeshSurface *as_fix(void *p) { return static_cast<FixMeshSurface *>(p); }
+
+}  // namespace
+
+extern "C" {
+
+void *dem_shim_mesh(void *lmp, const char *fix_id) {
+  LAMMPS *l = static_cast<LAMMPS *>(lmp);
+  Fix *f = l->modify->find_fix_id(fix_id);
+  FixMeshSurface *fm = f ? dynamic_cast<FixMeshSurface *>(f) : 0;
+  return fm;
+}
+
+int dem_shim_mesh_size(void *mesh) { return as_fix(mesh)->triMesh()->sizeLocal(); }
+
+int dem_shim_mesh_id(void *mesh, int i) { return as_fix(mesh)->triMesh()->id(i); }
+
+void dem_shim_mesh_node(void *mesh, int i, int c, double *xyz) {
+  as_fix(mesh)->triMesh()->node(i, c, xyz);
+}
+
+int dem_shim_mesh_make_moving(void *mesh) {
+  TriMesh *m = as_fix(mesh)->triMesh();
+  if (m->isMoving()) return -1;
+  if (m->sizeLocal() + m->sizeGhost() == 0 && m->sizeGlobal() == 0) return -1;
+  m->registerMove(false, true, false);
+  typedef MultiVectorContainer<double, 3, 3> NodeVec;
+  NodeVec *v = m->prop().getElementProperty<NodeVec>("v");
+  if (!v) v = m->prop().addElementProperty<NodeVec>("v", "comm_exchange_borders", "frame_invariant",
+                                                   "restart_no");
+  if (!v) return -1;
+  v->setAll(0.);
+  return 0;
+}
+
+int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double *xyz,
+                            const double *v) {
+  FixMeshSurface *fm = as_fix(mesh);
+  TriMesh *m = fm->triMesh();
+  const int nall = m->sizeLocal() + m->sizeGhost();
+  double ***node = SurfaceAccess::nodes(m);
+  typedef MultiVectorContainer<double, 3, 3> NodeVec;
+  NodeVec *vc = m->prop().getElementProperty<NodeVec>("v");
+  double ***vn = vc && vc->size() >= nall ? vc->begin() : 0;
+  for (int i = 0; i < nall; i++) {
+    const int *k = idx + 3 * m->id(i);
+    for (int c = 0; c < 3; c++) {
+      const double *p = xyz + 3 * k[c];
+      node[i][c][0] = p[0];
+      node[i][c][1] = p[1];
+      node[i][c][2] = p[2];
+      if (!vn) continue;
+      if (v) {
+        const double *q = v + 3 * k[c];
+        vn[i][c][0] = q[0];
+        vn[i][c][1] = q[1];
+        vn[i][c][2] = q[2];
+      } else {
+        vn[i][c][0] = vn[i][c][1] = vn[i][c][2] = 0.;
+      }
+    }
+  }
+  m->updateCenterRbound(0, nall);
+  SurfaceAccess::recalc(m);
+  if (m->decideRebuild()) {
+    *fm->get_next_reneighbor_ptr() = static_cast<LAMMPS *>(lmp)->update->ntimestep + 1;
+    return 1;
+  }
+  return 0;
+}
+
+int dem_shim_mesh_forces(void *mesh, double *f) {
+  TriMesh *m = as_fix(mesh)->triMesh();
+  VectorContainer<double, 3> *fc = m->prop().getElementProperty<VectorContainer<double, 3> >("f");
+  if (!fc) return -1;
+  const int n = m->sizeLocal();
+  if (fc->size() < n) return -1;
+  double **fe = fc->begin();
+  for (int i = 0; i < n; i++) {
+    double *o = f + 3 * m->id(i);
+    o[0] = fe[i][0];
+    o[1] = fe[i][1];
+    o[2] = fe[i][2];
+  }
+  return 0;
+}
+
+}  /* extern "C" */

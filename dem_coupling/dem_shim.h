@@ -1,0 +1,44 @@
+/* dem_shim.h - private C interface to the few LIGGGHTS internals that library.h cannot reach
+ * (dem_shim.cpp): the TriMesh of a `fix mesh/surface/stress`, its nodes, per-node velocities
+ * and per-triangle forces. Used by dem_bridge.c only.
+ *
+ * LIGGGHTS stores each triangle with its own three node copies, in its own element order; an
+ * element keeps its id (0-based position in the mesh file) when LIGGGHTS reorders elements,
+ * so every function here addresses triangles by that id: idx[3*id + c] is the caller vertex
+ * of corner c of the triangle with id `id`, and per-triangle outputs are indexed by id.
+ * Serial LIGGGHTS only (no ghost elements are written back). No function allocates. */
+#ifndef DEM_SHIM_H
+#define DEM_SHIM_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The `fix mesh/surface` fix_id [in] of instance lmp [borrowed], or NULL if there is none.
+ * The result [borrowed] lives as long as the fix; every function below takes it. */
+void *dem_shim_mesh(void *lmp, const char *fix_id);
+/* Triangles LIGGGHTS holds on this process (owned). */
+int dem_shim_mesh_size(void *mesh);
+/* Id of the i-th owned triangle. */
+int dem_shim_mesh_id(void *mesh, int i);
+/* Corner c of the i-th owned triangle, xyz [out] 3. */
+void dem_shim_mesh_node(void *mesh, int i, int c, double *xyz);
+/* Declare the mesh moving (translation; before the first run, so that LIGGGHTS keeps the node
+ * positions of the last neighbour build) and give it the per-node velocity property `v` that
+ * the wall contact model reads. 0 ok, -1 if it cannot. */
+int dem_shim_mesh_make_moving(void *mesh);
+/* Overwrite every node copy with xyz[3*idx[3*id+c]] and its velocity with v[...] (v NULL:
+ * zero), recompute centres, bounding radii, edge vectors, normals and areas, and request a
+ * neighbour rebuild at the next step if a node moved more than half the skin since the last
+ * build. Returns 1 if a rebuild was requested, 0 if not. */
+int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double *xyz,
+                            const double *v);
+/* Force of the last step on each triangle, f [out] at 3*id [N]; -1 if the mesh tracks no
+ * stress. */
+int dem_shim_mesh_forces(void *mesh, double *f);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,89 @@
+/* Hertz impact of one sphere on a triangulated wall (two triangles, dem_bridge_add_mesh),
+ * measured through the per-triangle wall forces (dem_bridge_mesh_forces).
+ *
+ * Reference (Johnson, Contact Mechanics, 1985, sec. 11.4), sphere of mass m and radius R
+ * against a flat wall, normal speed v:
+ *   1/E* = (1 - nu^2)/E + (1 - nu_w^2)/E_w,  R* = R,  m* = m,
+ *   delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5),  F_max = 4/3 E* sqrt(R*) delta_max^1.5,
+ *   t_c = 2.87 (m*^2 / (R* E*^2 v))^(1/5)      (dem_hertz_wall_contact_time; 2.868 exactly).
+ * The wall has its own E_w, nu_w, so the general E* is exercised.
+ * The closed forms are elastic; LIGGGHTS' contact is damped to give restitution e = 0.99:
+ * about 1 - e^2 = 2 % of the energy is dissipated over the whole contact, about half of it
+ * before maximum compression, so delta_max drops by ~ 0.4 % and F_max by ~ 0.6 %; the viscous
+ * force (~ 2 beta sqrt(k m) v, beta = ln e / sqrt(ln^2 e + pi^2) = -0.0032) shifts the force
+ * zero crossings by ~ 0.3 % of t_c. With 1 step = 0.4 % of t_c, both are checked to 2 %.
+ * Rebound: v_out / v_in against e; LIGGGHTS sets the damping from e with the linear-spring
+ * relation, which for the Hertz spring is exact in the limit (Antypov & Elliott 2011 find a
+ * few % of (1 - e) for moderate e): checked as (1 - v_out/v_in) against (1 - e) to 15 %.
+ * Order map: the sphere strikes the second triangle; the first must carry no force. */
+#include "dem_test_util.h"
+
+int main(void) {
+  DemParams p;
+  t_params(&p);
+  p.diameter = 4e-3;
+  p.young = 1e7;
+  p.poisson = 0.3;
+  p.wall_young = 2e7;
+  p.wall_poisson = 0.25;
+  p.restitution = 0.99;
+  p.friction = p.friction_wall = p.friction_piston = 0.3;
+  p.gravity[2] = 0;
+  p.dt = 2e-6;
+  p.skin = 0.5e-3;
+  const double v = 0.5, R = 0.5 * p.diameter, gap = 0.1e-3;
+  const double cx = -0.004, cy = 0.004; /* above triangle 1 (y > x), away from its edges */
+
+  DemBridge *b = NULL;
+  T_CHECK(dem_bridge_create(NULL, &b));
+  T_CHECK(dem_bridge_setup(b, &p));
+  double xyz[12];
+  int tri[6], id;
+  t_square(0, 0, 0, 0.01, xyz, tri);
+  T_CHECK(dem_bridge_add_mesh(b, "plate", 4, xyz, 2, tri, DEM_WALL_STEEL, &id));
+  int ins;
+  T_CHECK(dem_bridge_insert_cylinder(b, cx, cy, R, gap, gap + p.diameter, 1, &ins));
+  t_true("one sphere inserted", ins == 1);
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "velocity all set 0 0 %.17g", -v);
+  T_CHECK(dem_bridge_command(b, cmd));
+
+  double f[6], fpeak = 0, f_other = 0;
+  int nforce = 0, steps = 0, ended = 0;
+  while (steps < 2000 && !ended) {
+    T_CHECK(dem_bridge_run(b, 1));
+    steps++;
+    T_CHECK(dem_bridge_mesh_forces(b, id, f));
+    double fz = -f[5]; /* the sphere pushes the wall down */
+    f_other = fmax(f_other, fabs(f[0]) + fabs(f[1]) + fabs(f[2]));
+    if (fz > 0 || fabs(f[3]) + fabs(f[4]) > 0) nforce++;
+    if (fz > fpeak) fpeak = fz;
+    if (nforce > 0 && f[5] == 0 && f[3] == 0 && f[4] == 0) ended = 1;
+  }
+  T_CHECK(dem_bridge_run(b, 10));
+  double vel[3], x[3];
+  T_CHECK(dem_bridge_particles(b, x, vel, NULL, NULL));
+
+  double m = p.density * 4.0 / 3.0 * M_PI * R * R * R;
+  double es = 1.0 / ((1 - p.poisson * p.poisson) / p.young +
+                     (1 - p.wall_poisson * p.wall_poisson) / p.wall_young);
+  double dmax = pow(15 * m * v * v / (16 * es * sqrt(R)), 0.4);
+  double fref = 4.0 / 3.0 * es * sqrt(R) * pow(dmax, 1.5);
+  double tref = dem_hertz_wall_contact_time(p.diameter, p.density, p.young, p.poisson,
+                                            p.wall_young, p.wall_poisson, v);
+  double tc = nforce * p.dt;
+
+  t_true("contact ended", ended);
+  t_close("peak wall force [N] (Hertz, 2 %: damping e = 0.99, see header)", fpeak, fref, 0, 0.02);
+  t_close("contact time [s] (Hertz, 2 %: 1 step = 0.4 %, damping 0.3 %)", tc, tref, 0, 0.02);
+  t_close("force on triangle 0 [N] (the sphere hits triangle 1 only)", f_other, 0, 1e-12, 0);
+  t_close("1 - rebound/impact speed (1 - e, 15 %)", 1 - vel[2] / v, 1 - p.restitution, 0, 0.15);
+  t_close("rebound lateral speed [m/s]", fabs(vel[0]) + fabs(vel[1]), 0, 1e-9, 0);
+  if (t_verbose())
+    printf("hertz: F_max %.6g N (ref %.6g, rel %.3g), t_c %.6g s (ref %.6g, rel %.3g), "
+           "e_meas %.5f (input %.3f), %d contact steps\n",
+           fpeak, fref, fpeak / fref - 1, tc, tref, tc / tref - 1, vel[2] / v, p.restitution,
+           nforce);
+  dem_bridge_destroy(&b);
+  return t_failures ? 1 : 0;
+}
