@@ -359,6 +359,8 @@ static int write_statics(Summary *S, const HmsaModel *m, HmsaEquilibrium *eq0) {
   for (int i = 0; i < n; i++) fprintf(S->f, "%s%.10g", i ? ", " : "", eq[i].lambda3);
   fprintf(S->f, "\nstatic_stable = ");
   for (int i = 0; i < n; i++) fprintf(S->f, "%s%d", i ? ", " : "", eq[i].stable);
+  fprintf(S->f, "\nstatic_limit_point = ");
+  for (int i = 0; i < n; i++) fprintf(S->f, "%s%d", i ? ", " : "", eq[i].limit_point);
   fprintf(S->f, "\n");
   double llp[HMSA_MAX_ROOTS], slp[HMSA_MAX_ROOTS];
   int nlp;

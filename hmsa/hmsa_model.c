@@ -222,12 +222,41 @@ static int static_interval(const HmsaModel *m, double *lo, double *hi) {
 
 typedef int (*ScalarFn)(const HmsaModel *m, double l, double b2, double *val);
 
+/* f = l^5 F_r for Zener (the polynomial l^6 - S l^5 + b2 l^2 - 1), F_r for PC. */
 static int fn_force(const HmsaModel *m, double l, double b2, double *val) {
-  double F;
-  int rc = hmsa_static_force(m, l, b2, &F, NULL);
-  if (rc) return rc;
-  *val = m->model == HMSA_ZENER ? F * pow(l, 5) : F;
-  return 0;
+  if (m->model == HMSA_ZENER) {
+    if (!(l > 0)) return SA_ERR_DOMAIN;
+    double l2 = l * l, l5 = l2 * l2 * l;
+    *val = (l - m->S) * l5 + b2 * l2 - 1.0;
+    return 0;
+  }
+  return hmsa_static_force(m, l, b2, val, NULL);
+}
+
+/* df/dl of fn_force: Zener 6 l^5 - 5 S l^4 + 2 b2 l, PC K_r. */
+static int fn_dforce(const HmsaModel *m, double l, double b2, double *val) {
+  if (m->model == HMSA_ZENER) {
+    if (!(l > 0)) return SA_ERR_DOMAIN;
+    double l2 = l * l, l4 = l2 * l2;
+    *val = (6.0 * l - 5.0 * m->S) * l4 + 2.0 * b2 * l;
+    return 0;
+  }
+  return hmsa_static_force(m, l, b2, NULL, val);
+}
+
+/* Bound on the rounding error of fn_force at l: a few ulps of the sum of its terms' moduli. */
+static double force_rounding(const HmsaModel *m, double l, double b2) {
+  double mag;
+  if (m->model == HMSA_ZENER) {
+    double l2 = l * l, l5 = l2 * l2 * l;
+    mag = l5 * l + fabs(m->S) * l5 + fabs(b2) * l2 + 1.0;
+  } else {
+    double F;
+    if (hmsa_static_force(m, l, 0.0, &F, NULL)) return 0.0;
+    F += m->S; /* the elastic part alone */
+    mag = fabs(F) + fabs(m->S) + fabs(b2) / (l * l * l);
+  }
+  return 64.0 * 2.220446049250313e-16 * mag;
 }
 
 static int fn_stiff(const HmsaModel *m, double l, double b2, double *val) {
@@ -238,9 +267,23 @@ static int fn_stiff(const HmsaModel *m, double l, double b2, double *val) {
   return 0;
 }
 
+/* Root of fn in [a, b] (fa = fn(a) and fn(b) of opposite signs) by bisection to machine
+ * precision. */
+static double bisect(const HmsaModel *m, double b2, ScalarFn fn, double a, double b, double fa) {
+  for (int it = 0; it < 200 && b - a > 4e-16 * b; it++) {
+    double c = 0.5 * (a + b), fc;
+    if (fn(m, c, b2, &fc)) break;
+    if (fc == 0.0) return c;
+    if ((fc < 0) == (fa < 0)) { a = c; fa = fc; } else b = c;
+  }
+  return 0.5 * (a + b);
+}
+
 /* All sign changes of fn on a fine grid over (lo, hi), refined by bisection to machine precision.
  * Grid: logarithmic for Zener (roots span decades), uniform in a tanh-like stretch for PC so
- * points cluster at the poles. */
+ * points cluster at the poles. A root where fn touches zero without changing sign, or two roots
+ * inside one grid cell, are not seen here: hmsa_static_solve therefore brackets F_r between the
+ * zeros of its derivative, where it is monotone. */
 static int bracket_roots(const HmsaModel *m, double b2, ScalarFn fn, double *roots, int *n) {
   double lo, hi;
   SA_CHECK(static_interval(m, &lo, &hi));
@@ -261,17 +304,46 @@ static int bracket_roots(const HmsaModel *m, double b2, ScalarFn fn, double *roo
     if (have && f == 0.0) {
       if (nr < HMSA_MAX_ROOTS) roots[nr++] = x;
     } else if (have && (fp < 0) != (f < 0) && fp != 0.0) {
-      double a = xp, b = x, fa = fp;
-      for (int it = 0; it < 200 && b - a > 4e-16 * b; it++) {
-        double c = 0.5 * (a + b), fc;
-        if (fn(m, c, b2, &fc)) break;
-        if ((fc < 0) == (fa < 0)) { a = c; fa = fc; } else b = c;
-      }
-      if (nr < HMSA_MAX_ROOTS) roots[nr++] = 0.5 * (a + b);
+      if (nr < HMSA_MAX_ROOTS) roots[nr++] = bisect(m, b2, fn, xp, x, fp);
     }
     xp = x;
     fp = f;
     have = 1;
+  }
+  *n = nr;
+  return 0;
+}
+
+/* Every root of the equilibrium function f (fn_force). f is monotone between consecutive zeros
+ * of f' (found by bracket_roots on fn_dforce), so each such piece holds at most one simple root,
+ * found by bisection when f changes sign over it, however close it lies to its neighbours. At
+ * a zero c of f' with |f(c)| within f's rounding error, f touches zero: a double root (a limit
+ * point of the prestress path), returned once with *dbl set; the pieces next to it then count
+ * f(c) as 0 so that no copy of it is bracketed. roots sorted ascending. */
+static int equilibrium_roots(const HmsaModel *m, double b2, double *roots, int *dbl, int *n) {
+  double lo, hi, crit[HMSA_MAX_ROOTS];
+  int nc, nr = 0;
+  SA_CHECK(static_interval(m, &lo, &hi));
+  SA_CHECK(bracket_roots(m, b2, fn_dforce, crit, &nc));
+  double x[HMSA_MAX_ROOTS + 2], f[HMSA_MAX_ROOTS + 2];
+  int ok[HMSA_MAX_ROOTS + 2], np = 0;
+  x[np++] = lo;
+  for (int i = 0; i < nc; i++) x[np++] = crit[i];
+  x[np++] = hi;
+  for (int i = 0; i < np; i++) ok[i] = fn_force(m, x[i], b2, &f[i]) == 0;
+  for (int i = 0; i < np; i++) {
+    if (i > 0 && ok[i - 1] && ok[i] && ((f[i - 1] < 0 && f[i] > 0) || (f[i - 1] > 0 && f[i] < 0)))
+      if (nr < HMSA_MAX_ROOTS) {
+        roots[nr] = bisect(m, b2, fn_force, x[i - 1], x[i], f[i - 1]);
+        dbl[nr++] = 0;
+      }
+    if (i > 0 && i < np - 1 && ok[i] && fabs(f[i]) <= force_rounding(m, x[i], b2)) {
+      if (nr < HMSA_MAX_ROOTS) {
+        roots[nr] = x[i];
+        dbl[nr++] = 1;
+      }
+      f[i] = 0.0;
+    }
   }
   *n = nr;
   return 0;
@@ -325,9 +397,15 @@ int hmsa_linearise(const HmsaModel *m, double l0, double b2, HmsaEquilibrium *eq
 
 int hmsa_static_solve(const HmsaModel *m, double b2, HmsaEquilibrium *eq, int *nroots) {
   double roots[HMSA_MAX_ROOTS];
-  int n;
-  SA_CHECK(bracket_roots(m, b2, fn_force, roots, &n));
-  for (int i = 0; i < n; i++) SA_CHECK(hmsa_linearise(m, roots[i], b2, &eq[i]));
+  int n, dbl[HMSA_MAX_ROOTS];
+  SA_CHECK(equilibrium_roots(m, b2, roots, dbl, &n));
+  for (int i = 0; i < n; i++) {
+    SA_CHECK(hmsa_linearise(m, roots[i], b2, &eq[i]));
+    if (dbl[i]) { /* K_r = 0 up to rounding: marginal, not stable */
+      eq[i].limit_point = 1;
+      eq[i].stable = 0;
+    }
+  }
   *nroots = n;
   return 0;
 }

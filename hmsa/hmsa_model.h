@@ -73,7 +73,9 @@ int hmsa_model_pc_domain(const HmsaModel *m, double *lo, double *hi);
 typedef struct {
   double lambda, lambda3;
   double K_r, K_u;        /* relaxed and instantaneous stiffness dF/dlambda */
-  int stable;             /* K_r > 0 */
+  int stable;             /* K_r > 0 (and not a limit point) */
+  int limit_point;        /* double root of F_r: K_r = 0 within rounding (a limit point of the
+                             prestress path; marginal, reported as not stable) */
   double omega_r, omega_u; /* sqrt(3 K/M0) (NaN-free: 0 when K <= 0) */
   double omega_d, zeta;   /* damped frequency and damping ratio from the cubic (Zener);
                              PC: omega_d = omega_r, zeta = 0 */
@@ -84,9 +86,12 @@ typedef struct {
 
 /* Relaxed force F_r(lambda) (xi = lambda for Zener) and K_r = dF_r/dlambda at load b2. */
 int hmsa_static_force(const HmsaModel *m, double lambda, double b2, double *F, double *K);
-/* Every root of F_r(lambda; b2) = 0 on lambda in (1e-3, 1e3) (PC: inside the domain), found by
- * bracketing on a fine logarithmic grid and bisection, with stability and frequencies.
- * eq [out] capacity HMSA_MAX_ROOTS, sorted by lambda. */
+/* Every root of F_r(lambda; b2) = 0 on lambda in (1e-3, 1e3) (PC: inside the domain), with
+ * stability and frequencies: the zeros of dF_r/dlambda are bracketed on a fine grid and
+ * bisected; between them F_r is monotone and each sign change is one root (bisection to
+ * machine precision, however close two roots lie); a zero of dF_r/dlambda where F_r vanishes
+ * within rounding is a double root, returned once with limit_point = 1. eq [out] capacity
+ * HMSA_MAX_ROOTS, sorted by lambda. */
 int hmsa_static_solve(const HmsaModel *m, double b2, HmsaEquilibrium *eq, int *nroots);
 /* Linearisation about the relaxed equilibrium lambda0 (fills every field of *eq). */
 int hmsa_linearise(const HmsaModel *m, double lambda0, double b2, HmsaEquilibrium *eq);
