@@ -23,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "dem_shim.h"
@@ -277,7 +278,15 @@ int dem_bridge_create(const char *log_path, DemBridge **out) {
    * without checking it is open, which crashes with "none" */
   char *argv[] = {"softact", "-log", log_path ? (char *)log_path : "none", "-screen", "/dev/null",
                   NULL};
+  /* A second instance in one process re-registers LIGGGHTS' contact-model tables and says so
+   * on std::cerr: stderr goes to /dev/null while the instance starts. */
+  fflush(stderr);
+  int saved = dup(2), devnull = open("/dev/null", O_WRONLY);
+  if (saved >= 0 && devnull >= 0) dup2(devnull, 2);
   lammps_open_no_mpi(5, argv, &b->lmp);
+  if (saved >= 0 && devnull >= 0) dup2(saved, 2);
+  if (saved >= 0) close(saved);
+  if (devnull >= 0) close(devnull);
   if (!b->lmp) {
     rmdir(b->tmpdir);
     free(b);
@@ -680,7 +689,7 @@ int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const dou
                xyz[3 * i + 1], xyz[3 * i + 2]);
   }
   memcpy(m->xyz, xyz, 3 * (size_t)m->nverts * sizeof *xyz);
-  dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, v);
+  dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, v, b->ran);
   return 0;
 }
 

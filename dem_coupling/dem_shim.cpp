@@ -81,7 +81,7 @@ int dem_shim_mesh_make_moving(void *mesh) {
 }
 
 int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double *xyz,
-                            const double *v) {
+                            const double *v, int after_setup) {
   FixMeshSurface *fm = as_fix(mesh);
   TriMesh *m = fm->triMesh();
   const int nall = m->sizeLocal() + m->sizeGhost();
@@ -109,7 +109,8 @@ int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double 
   }
   m->updateCenterRbound(0, nall);
   SurfaceAccess::recalc(m);
-  if (m->decideRebuild()) {
+  /* before the first set-up LIGGGHTS has no neighbour-build positions (and builds anyway) */
+  if (after_setup && m->decideRebuild()) {
     *fm->get_next_reneighbor_ptr() = static_cast<LAMMPS *>(lmp)->update->ntimestep + 1;
     return 1;
   }

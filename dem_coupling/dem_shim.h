@@ -30,9 +30,10 @@ int dem_shim_mesh_make_moving(void *mesh);
 /* Overwrite every node copy with xyz[3*idx[3*id+c]] and its velocity with v[...] (v NULL:
  * zero), recompute centres, bounding radii, edge vectors, normals and areas, and request a
  * neighbour rebuild at the next step if a node moved more than half the skin since the last
- * build. Returns 1 if a rebuild was requested, 0 if not. */
+ * build (after_setup: LIGGGHTS has run its set-up once). Returns 1 if a rebuild was requested,
+ * 0 if not. */
 int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double *xyz,
-                            const double *v);
+                            const double *v, int after_setup);
 /* Force of the last step on each triangle, f [out] at 3*id [N]; -1 if the mesh tracks no
  * stress. */
 int dem_shim_mesh_forces(void *mesh, double *f);

@@ -43,6 +43,9 @@ static inline int t_verbose(void) {
   return s && *s && strcmp(s, "0");
 }
 
+/* LIGGGHTS log of the test (DEM_TEST_LOG=path in the environment), else none. */
+static inline const char *t_log(void) { return getenv("DEM_TEST_LOG"); }
+
 static inline double t_now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);

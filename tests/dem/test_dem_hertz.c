@@ -35,7 +35,7 @@ int main(void) {
   const double cx = -0.004, cy = 0.004; /* above triangle 1 (y > x), away from its edges */
 
   DemBridge *b = NULL;
-  T_CHECK(dem_bridge_create(NULL, &b));
+  T_CHECK(dem_bridge_create(t_log(), &b));
   T_CHECK(dem_bridge_setup(b, &p));
   double xyz[12];
   int tri[6], id;
