@@ -95,6 +95,8 @@ typedef struct {
   double nnz_l;             /* entries of the Cholesky factor */
   double t_assemble, t_factor, t_solve, t_symbolic; /* seconds */
   int n_assemble, n_factor, n_solve;                /* calls (assembly incl. residual-only) */
+  int n_assemble_tangent;   /* Newton assemblies that built the tangent (a direction from
+                             * reused factors needs none) */
   int n_chol, n_lu;
   int n_reuse;              /* Newton directions from reused factors (incl. REUSE predictors) */
   int n_interface;          /* elements scattered serially after the threaded slabs */
@@ -126,6 +128,11 @@ int fem_solver_set_prescribed(FemSolver *s, int n, const int *nodes, int comp, d
  * No allocation: meant for the DEM coupling, called every coupling step. */
 int fem_solver_set_nodal_forces(FemSolver *s, int n, const int *nodes, const double *f);
 void fem_solver_clear_nodal_forces(FemSolver *s);
+/* Time [s] a static solve stands for (e.g. the coupling interval; 0, the default: none). With
+ * dt > 0 a successful fem_solver_solve ends with velocities (u - u_start) / dt, u_start the
+ * state the solve began from, zero accelerations, and time advanced by dt; with 0 the
+ * velocities after a static solve are zero (a state at rest). */
+int fem_solver_set_static_interval(FemSolver *s, double dt);
 
 /* Monitor called after every converged substep (static) / step (dynamic); a non-zero return
  * stops the solve with that code. */

@@ -32,6 +32,7 @@
 
 #include "sa_error.h"
 #include "sa_log.h"
+#include "fem_kernel_quad.h"
 
 #define TAG "mesh"
 
@@ -46,71 +47,24 @@ static const int tet_mid[4][4] = {{-1, 4, 6, 7}, {4, -1, 5, 8}, {6, 5, -1, 9}, {
 /* Gmsh tet10 node k goes to VTK position gmsh_to_vtk[k]. */
 static const int gmsh_to_vtk10[10] = {0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
 
-/* The classical 14-point degree-5 rule with positive weights (sum 1/6; checked to round-off on
- * all monomials of degree <= 5): exact
- * for the cubic det J of a curved tet10, so it gives exact volumes. */
-#define NQ14 14
-static double q14_L[NQ14][4], q14_w[NQ14];
-
-static void q14_init(void)
-{
-  const double a[2] = {0.0927352503108912264, 0.3108859192633006097};
-  const double wa[2] = {0.01224884051939365827, 0.01878132095300264180};
-  const double b = 0.0455037041256496494918, wb = 0.007091003462846911495;
-  int n = 0;
-  for (int k = 0; k < 2; ++k)
-    for (int i = 0; i < 4; ++i, ++n) {
-      for (int j = 0; j < 4; ++j) q14_L[n][j] = (i == j) ? 1.0 - 3.0 * a[k] : a[k];
-      q14_w[n] = wa[k];
-    }
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j, ++n) {
-      for (int l = 0; l < 4; ++l) q14_L[n][l] = (l == i || l == j) ? 0.5 - b : b;
-      q14_w[n] = wb;
-    }
-}
-
-/* det of the Jacobian d x / d(r, s, t) of element X (3 * nen) at barycentric L. */
+/* det of the Jacobian d x / d(r, s, t) of element X (3 * nen) at barycentric L, with the
+ * kernels' shape functions (fem_kernel_quad.h: one copy of the reference element). */
 static double tet_detJ(int nen, const double *X, const double L[4])
 {
-  static const double dL[4][3] = {{-1, -1, -1}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  double J[3][3] = {{0}};
-  for (int a = 0; a < 4; ++a) {
-    double c = (nen == 10) ? 4.0 * L[a] - 1.0 : 1.0;
+  double dN[10][3], J[3][3] = {{0}};
+  fem_kq_tet_shape(nen, L, NULL, dN);
+  for (int a = 0; a < nen; ++a)
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) J[i][j] += X[3 * a + i] * c * dL[a][j];
-  }
-  if (nen == 10)
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) {
-        int m = tet_mid[a][b];
-        for (int j = 0; j < 3; ++j) {
-          double d = 4.0 * (L[a] * dL[b][j] + L[b] * dL[a][j]);
-          for (int i = 0; i < 3; ++i) J[i][j] += X[3 * m + i] * d;
-        }
-      }
+      for (int j = 0; j < 3; ++j) J[i][j] += X[3 * a + i] * dN[a][j];
   return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
          J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
          J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
 }
 
-/* Check points for det J: tet10 corners, the 4-point rule and the 14-point rule (the kernels'
- * rules); tet4 its centroid (det J is constant). */
-#define NCHECK (4 + 4 + NQ14)
-static double check_L[NCHECK][4];
-
-static void check_init(void)
-{
-  static const double g4a = 0.5854101966249685, g4b = 0.1381966011250105;
-  int np = 0;
-  for (int a = 0; a < 4; ++a, ++np)
-    for (int j = 0; j < 4; ++j) check_L[np][j] = (a == j);
-  for (int a = 0; a < 4; ++a, ++np)
-    for (int j = 0; j < 4; ++j) check_L[np][j] = (a == j) ? g4a : g4b;
-  q14_init();
-  for (int q = 0; q < NQ14; ++q, ++np) memcpy(check_L[np], q14_L[q], sizeof check_L[np]);
-}
-static pthread_once_t check_once = PTHREAD_ONCE_INIT;
+/* Check points for det J of a tet10: its corners and every rule the kernels integrate with
+ * (4-point for straight, 8-point for curved elements, 14-point for the lumped mass); tet4: the
+ * centroid (det J is constant). */
+static const FemKqRule *const check_rules[] = {&fem_kq_tet4, &fem_kq_tet8, &fem_kq_tet14};
 
 static void elem_coords(const FemMesh *m, int e, double *X);
 
@@ -124,12 +78,18 @@ static double elem_min_detJ(const FemMesh *m, int e, int *where)
     *where = 0;
     return tet_detJ(4, X, L) / 6.0;
   }
-  pthread_once(&check_once, check_init);
   double dmin = INFINITY;
-  for (int p = 0; p < NCHECK; ++p) {
-    double d = tet_detJ(10, X, check_L[p]) / 6.0;
-    if (d < dmin) dmin = d, *where = p;
+  for (int a = 0; a < 4; ++a) {
+    double L[4] = {0, 0, 0, 0};
+    L[a] = 1.0;
+    double d = tet_detJ(10, X, L) / 6.0;
+    if (d < dmin) dmin = d, *where = a;
   }
+  for (int r = 0, p = 4; r < 3; ++r)
+    for (int q = 0; q < check_rules[r]->n; ++q, ++p) {
+      double d = tet_detJ(10, X, check_rules[r]->L[q]) / 6.0;
+      if (d < dmin) dmin = d, *where = p;
+    }
   return dmin;
 }
 
@@ -147,9 +107,10 @@ static double elem_volume(const FemMesh *m, int e)
     const double L[4] = {0.25, 0.25, 0.25, 0.25};
     return tet_detJ(4, X, L) / 6.0;
   }
-  pthread_once(&check_once, check_init);
+  /* the 14-point rule (degree 5) is exact for the cubic det J of a curved tet10 */
   double v = 0.0;
-  for (int q = 0; q < NQ14; ++q) v += q14_w[q] * tet_detJ(10, X, q14_L[q]);
+  for (int q = 0; q < fem_kq_tet14.n; ++q)
+    v += fem_kq_tet14.w[q] * tet_detJ(10, X, fem_kq_tet14.L[q]);
   return v;
 }
 

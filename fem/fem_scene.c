@@ -12,7 +12,7 @@
  *   centerline_NNNN.csv   deformed centre-line per step (fem_centerline)
  *   fem_NNNN.vtk + fem.vtk.series   tet10 (or tet4) cells: displacement; Cauchy stress,
  *                         von Mises stress, principal stretches (element averages), region
- *   summary.txt           mesh, solver statistics and timings */
+ *   summary.ini           mesh, solver statistics and timings (key = value, as every scene) */
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -169,7 +169,8 @@ static int write_vtk(Out *o) {
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
   SA_CHECK(sa_vtk_commit(&v));
-  SA_CHECK(sa_vtk_series_add(o->series, name, (double)o->step));
+  /* the series' time is the load ParaView users scrub through: the cavity pressure [kPa] */
+  SA_CHECK(sa_vtk_series_add(o->series, name, fem_solver_pressure(o->s) / 1e3));
   return 0;
 }
 
@@ -357,7 +358,7 @@ static int fem_run(void *scene, SaRun *run) {
     FemSolverStats st;
     fem_solver_stats(o.s, &st);
     SaFile *f = NULL;
-    if (sa_run_path(run, "summary.txt", path) == 0 && sa_file_open(path, &f) == 0) {
+    if (sa_run_path(run, "summary.ini", path) == 0 && sa_file_open(path, &f) == 0) {
       FILE *fp = sa_file_stream(f);
       fprintf(fp, "; softact fem pressure bending summary\n");
       fprintf(fp, "nodes = %d\nelements = %d\nelement = %s\nfree_dofs = %d\nnnz_K = %ld\n"

@@ -6,4 +6,5 @@ add_library(sa_fem_mesh
   ${CMAKE_CURRENT_LIST_DIR}/fem_mesh.c)
 target_include_directories(sa_fem_mesh PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 target_include_directories(sa_fem_mesh PRIVATE ${GMSH_INCLUDE_DIR})
-target_link_libraries(sa_fem_mesh PUBLIC sa_core m PRIVATE ${GMSH_LIBRARY} Threads::Threads)
+# det J checks use the kernels' reference element and quadrature rules (one copy).
+target_link_libraries(sa_fem_mesh PUBLIC sa_core m PRIVATE sa_fem_kernels ${GMSH_LIBRARY} Threads::Threads)

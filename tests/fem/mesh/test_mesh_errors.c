@@ -4,7 +4,8 @@
  *  - a .geo lacking a required group passes generation but fem_mesh_require names the group;
  *  - a bad parameter name is rejected;
  *  - fem_mesh_check rejects a hand-built inverted tet4 (swapped nodes), a flat tet4 and a tet10
- *    whose mid-node is dragged across the element, naming the element;
+ *    whose mid-node is dragged across the element, naming the element, and a curved tet10
+ *    inverted only at a point of the 8-point rule curved elements are integrated with;
  *  - fem_mesh_quality gives the radius ratio of known tets (corner tet sqrt 3 - 1, regular 1);
  * and fem_mesh_read reads back a .msh written by Gmsh from cook.geo (same counts and volume as
  * fem_mesh_generate). */
@@ -124,6 +125,18 @@ static int test_check(void)
   }
   x10[3 * 4] = 1.2; /* mid-node of edge 01 beyond node 1: det J < 0 near corner 1 */
   fail |= expect(fem_mesh_check(&q, 1e-6), SA_ERR_INPUT, "element 0", "inverted tet10");
+  /* Curved tet10 whose det J is positive at the corners and at the 4- and 14-point rules'
+   * points (min 0.65, 0.015, 0.0032) but negative at a point of the 8-point rule the kernels
+   * use for curved elements (min -0.0084; found by a random search over mid-node positions). */
+  static const double mid8[18] = {
+      0.30335951605968153, -0.25301169448206745, 0.26354838230812389, 0.163594731345584,
+      0.27006169714502137, 0.31387513350410168, 0.053458643543281871, 0.30040513547156245,
+      0.25457864992999407, -0.35119399277083296, -0.051683654846476218, 0.71568102306485226,
+      0.66049330558650809, -0.38202236256656352, 0.8161371893790258, -0.049657362163838627,
+      0.66010041262959152, 0.16078424493818738};
+  memcpy(x10 + 12, mid8, sizeof mid8);
+  fail |= expect(fem_mesh_check(&q, 1e-12), SA_ERR_INPUT, "element 0",
+                 "tet10 inverted at an 8-point-rule point");
   return fail;
 }
 
