@@ -386,3 +386,10 @@ int sa_plot_script(const char *png_path, const char *body) {
   SA_CHECK(sa_plot_render(png_path, 0, 0, body));
   return 0;
 }
+
+int sa_plot_script_size(const char *png_path, int width, int height, const char *body) {
+  SA_REQUIRE(png_path && png_path[0], SA_ERR_INPUT, "sa_plot_script_size: empty PNG path");
+  SA_REQUIRE(body, SA_ERR_INPUT, "plot %s: NULL script body", png_path);
+  SA_CHECK(sa_plot_render(png_path, width, height, body));
+  return 0;
+}

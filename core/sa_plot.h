@@ -22,5 +22,7 @@ int sa_plot_lines(const char *png_path, const SaPlotAxes *axes, int nseries,
                   const SaPlotSeries *series);
 /* Free-form: body is gnuplot commands after the terminal/output lines are set. */
 int sa_plot_script(const char *png_path, const char *body);
+/* As sa_plot_script, with the image size in pixels (0 = 900 x 600). */
+int sa_plot_script_size(const char *png_path, int width, int height, const char *body);
 
 #endif

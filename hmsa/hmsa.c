@@ -15,6 +15,7 @@
 
 #include "hmsa_analysis.h"
 #include "hmsa_classify.h"
+#include "hmsa_figure.h"
 #include "sa_csv.h"
 #include "sa_error.h"
 #include "sa_log.h"
@@ -153,9 +154,14 @@ static const SaParamTable *const hmsa_tables[] = {&hmsa_table, &hmsa_sweep_table
 
 #define HMSA_MAX_VARIANTS 256
 
+#define HMSA_MAX_DIMS 6
+
 typedef struct {
   HmsaModel m;
-  char tag[128];
+  char tag[128];            /* file-name part, e.g. eta=5_S=0_b2=+0.16 ("" for one variant) */
+  int idx[HMSA_MAX_DIMS];   /* index into each dimension's list */
+  char plot_csv[256];       /* history: the CSV the figures read (decimated copy if long) */
+  int ok;                   /* ran to the end */
 } HmsaVariant;
 
 typedef struct {
@@ -163,19 +169,34 @@ typedef struct {
   HmsaSweepParams sw;
   HmsaPoincareParams pc;
   HmsaIntegratorOptions io;
+  int ndim;                              /* lists relevant to the model and loading */
+  const char *dim_name[HMSA_MAX_DIMS];   /* case key */
+  const SaRealList *dim_list[HMSA_MAX_DIMS];
   int nvar;
   HmsaVariant var[HMSA_MAX_VARIANTS];
 } HmsaScene;
 
 /* ------------------------------------------------------------------ variants */
 
+/* Signed keys carry an explicit sign in names and labels: b2=+0.16, sigma=-1. */
+static int dim_signed(const char *key) { return !strcmp(key, "b2") || !strcmp(key, "sigma"); }
+
 static void tag_add(char *tag, size_t n, const char *key, double v) {
   size_t k = strlen(tag);
-  char num[48];
-  snprintf(num, sizeof num, "%g", v);
-  for (char *s = num; *s; s++)
-    if (*s == '-') *s = 'm'; /* file-name friendly: b2m0.16 */
-  snprintf(tag + k, n - k, "%s%s%s", k ? "_" : "", key, num);
+  snprintf(tag + k, n - k, dim_signed(key) ? "%s%s=%+g" : "%s%s=%g", k ? "_" : "", key, v);
+}
+
+/* Legend text of key = v for the figures (UTF-8, gnuplot enhanced text). */
+static void dim_label(char *buf, size_t n, const char *key, double v) {
+  if (!strcmp(key, "eta")) snprintf(buf, n, "η = %g", v);
+  else if (!strcmp(key, "S")) snprintf(buf, n, "S = %g", v);
+  else if (!strcmp(key, "b2")) snprintf(buf, n, "b^2 = %+g", v);
+  else if (!strcmp(key, "sigma"))
+    snprintf(buf, n, "σ = %+g (%s B_r)", v, v > 0 ? "along" : "against");
+  else if (!strcmp(key, "mu_c")) snprintf(buf, n, "μ_c = %g", v);
+  else if (!strcmp(key, "mu_e")) snprintf(buf, n, "μ_e = %g", v);
+  else if (!strcmp(key, "lambda_max")) snprintf(buf, n, "λ_{max} = %g", v);
+  else snprintf(buf, n, "%s = %g", key, v);
 }
 
 static int build_variants(HmsaScene *s) {
@@ -196,6 +217,8 @@ static int build_variants(HmsaScene *s) {
   L[nl] = &p->S; name[nl++] = "S";
   if (load == HMSA_LOAD_CONST) { L[nl] = &p->b2; name[nl++] = "b2"; }
   if (load == HMSA_LOAD_SQ) { L[nl] = &p->sigma; name[nl++] = "sigma"; }
+  s->ndim = nl;
+  for (int i = 0; i < nl; i++) s->dim_name[i] = name[i], s->dim_list[i] = L[i];
   long total = 1;
   for (int i = 0; i < nl; i++) total *= L[i]->n;
   SA_REQUIRE(total <= HMSA_MAX_VARIANTS, SA_ERR_INPUT,
@@ -228,6 +251,7 @@ static int build_variants(HmsaScene *s) {
       r /= L[i]->n;
     }
     for (int i = 0; i < nl; i++) {
+      var->idx[i] = idx[i];
       double x = L[i]->v[idx[i]];
       if (L[i] == &p->eta) m->eta_bar = x;
       else if (L[i] == &p->mu_c) m->mu_c = x;
@@ -394,21 +418,127 @@ static int open_summary(const SaRun *run, SaFile **sf) {
   return 0;
 }
 
-static int plot_xy(const SaRun *run, const char *png, const char *csv, int xc, int yc,
-                   const char *title, const char *xl, const char *yl, const char *style) {
-  if (!run->params.plots) return 0;
-  char pp[SA_STR_MAX], cp[SA_STR_MAX];
-  SA_CHECK(sa_run_path(run, png, pp));
-  SA_CHECK(sa_run_path(run, csv, cp));
-  SaPlotSeries s = {cp, xc, yc, title, style};
-  SaPlotAxes ax = {title, xl, yl, 0, 0, 0, 0};
-  if (sa_plot_lines(pp, &ax, 1, &s)) sa_error_clear(); /* plots are optional */
+/* ------------------------------------------------------------------ figure texts */
+
+/* Appends ", " + text to buf. */
+static void join(char *buf, size_t n, const char *text) {
+  size_t k = strlen(buf);
+  if (text[0]) snprintf(buf + k, n - k, "%s%s", k ? ", " : "", text);
+}
+
+/* The parameters common to every variant of the scene, for figure titles. */
+static void scene_title(const HmsaScene *s, char *buf, size_t n) {
+  const HmsaModel *m = &s->var[0].m;
+  char t[160];
+  buf[0] = 0;
+  int statics = !strcmp(s->p.analysis, "statics");
+  if (statics) snprintf(t, sizeof t, "%s", m->model == HMSA_ZENER ? "Zener" : "polymer chain");
+  else if (m->model == HMSA_ZENER) snprintf(t, sizeof t, "Zener (β = %g, c = %g)", m->beta, m->c);
+  else snprintf(t, sizeof t, "polymer chain (c = %g)", m->c);
+  join(buf, n, t);
+  for (int d = 0; d < s->ndim; d++)
+    if (s->dim_list[d]->n == 1 && !(statics && !strcmp(s->dim_name[d], "eta"))) {
+      dim_label(t, sizeof t, s->dim_name[d], s->dim_list[d]->v[0]);
+      join(buf, n, t);
+    }
+  int sweep = !strcmp(s->p.analysis, "sweep");
+  if (m->loading == HMSA_LOAD_CONST) {
+    if (strcmp(s->p.analysis, "statics")) join(buf, n, "step load at τ = 0");
+  } else if (m->loading == HMSA_LOAD_SQ) {
+    snprintf(t, sizeof t, "b^2 = σ b_a^2 sin^2(Ωτ), b_a = %g", m->b_a);
+    join(buf, n, t);
+  } else {
+    snprintf(t, sizeof t, "b^2 = %g %+g sin(Ωτ)", m->b2_dc, m->b2_ac);
+    join(buf, n, t);
+  }
+  if (m->loading != HMSA_LOAD_CONST && !sweep) {
+    snprintf(t, sizeof t, "Ω = %g", m->omega);
+    join(buf, n, t);
+  }
+}
+
+/* The listed (multi-valued) parameters of a variant, except dimension `skip` (-1: none). */
+static void variant_text(const HmsaScene *s, const HmsaVariant *v, int skip, char *buf, size_t n) {
+  buf[0] = 0;
+  for (int d = 0; d < s->ndim; d++) {
+    if (d == skip || s->dim_list[d]->n == 1) continue;
+    char t[96];
+    dim_label(t, sizeof t, s->dim_name[d], s->dim_list[d]->v[v->idx[d]]);
+    join(buf, n, t);
+  }
+}
+
+/* Renders a figure into the run folder; plots are optional, a failure is only logged. */
+static void figure_write(const SaRun *run, const char *png, const HmsaFigure *f) {
+  char pp[SA_STR_MAX];
+  if (sa_run_path(run, png, pp) || hmsa_figure_render(pp, f)) sa_error_clear();
+}
+
+/* Overlay layout: the curves of a panel differ in dimension cd (the outermost listed one), the
+ * panels in the other listed dimensions: two of them span rows x columns, one or more than two
+ * are laid out three (or two, for four panels) to a row. */
+typedef struct {
+  int cd;                    /* curve dimension, -1: one curve per panel */
+  int npd, pd[HMSA_MAX_DIMS];
+  int rows, cols, npanels;
+} Layout;
+
+static int layout_make(const HmsaScene *s, int cd, Layout *L) {
+  memset(L, 0, sizeof *L);
+  L->cd = cd;
+  L->npanels = 1;
+  for (int d = 0; d < s->ndim; d++)
+    if (s->dim_list[d]->n > 1 && d != cd) {
+      L->pd[L->npd++] = d;
+      L->npanels *= s->dim_list[d]->n;
+    }
+  if (L->npanels > HMSA_FIG_MAX_PANELS) return -1;
+  if (L->npd == 2 && s->dim_list[L->pd[1]]->n <= 4) {
+    L->rows = s->dim_list[L->pd[0]]->n;
+    L->cols = s->dim_list[L->pd[1]]->n;
+  } else {
+    L->cols = L->npanels <= 3 ? L->npanels : L->npanels == 4 ? 2 : 3;
+    L->rows = (L->npanels + L->cols - 1) / L->cols;
+  }
   return 0;
 }
 
+static int layout_panel(const HmsaScene *s, const Layout *L, const HmsaVariant *v) {
+  int p = 0;
+  for (int i = 0; i < L->npd; i++) p = p * s->dim_list[L->pd[i]]->n + v->idx[L->pd[i]];
+  return p;
+}
+
+/* The first listed dimension, the one the curves of an overlay differ in (-1: none). */
+static int curve_dim(const HmsaScene *s) {
+  for (int d = 0; d < s->ndim; d++)
+    if (s->dim_list[d]->n > 1) return d;
+  return -1;
+}
+
+/* Overlay figure skeleton: title, panel titles and one legend entry per curve value. */
+static int overlay_begin(const HmsaScene *s, const Layout *L, HmsaFigure *f, HmsaCurveKind kind) {
+  hmsa_figure_init(f);
+  scene_title(s, f->title, sizeof f->title);
+  f->rows = L->rows, f->cols = L->cols, f->npanels = L->npanels;
+  for (int i = 0; i < s->nvar; i++) {
+    const HmsaVariant *v = &s->var[i];
+    HmsaPanel *P = &f->panel[layout_panel(s, L, v)];
+    if (!P->title[0]) variant_text(s, v, L->cd, P->title, sizeof P->title);
+    if (L->cd >= 0) {
+      char t[96];
+      dim_label(t, sizeof t, s->dim_name[L->cd], s->dim_list[L->cd]->v[v->idx[L->cd]]);
+      hmsa_figure_legend(f, t, v->idx[L->cd], kind);
+    }
+  }
+  return 0;
+}
+
+static int curve_color(const Layout *L, const HmsaVariant *v) { return L->cd >= 0 ? v->idx[L->cd] : 0; }
+
 /* ------------------------------------------------------------------ history */
 
-static int run_history(const HmsaScene *s, const HmsaVariant *v, const SaRun *run, Summary *S) {
+static int run_history(const HmsaScene *s, HmsaVariant *v, const SaRun *run, Summary *S) {
   const HmsaModel *m = &v->m;
   int zener = m->model == HMSA_ZENER;
   HmsaEquilibrium eq;
@@ -420,13 +550,39 @@ static int run_history(const HmsaScene *s, const HmsaVariant *v, const SaRun *ru
   const char *units[] = {"-", "-", "-", "-", "-", "-"};
   SaCsv *t;
   SA_CHECK(sa_csv_open(path, zener ? 6 : 5, names, units, &t));
+  long N = (long)floor(s->p.t_end / s->p.dt_out + 1e-9);
+  /* a long history is plotted from a decimated copy (extremes of lambda3 and dlambda3/dtau per
+   * bin of ~half a pixel column kept): gnuplot needs minutes for 1e6 rows */
+  snprintf(v->plot_csv, sizeof v->plot_csv, "%s", csv);
+  SaCsv *td = NULL;
+  HmsaDecimator *dec = NULL;
+  int rc = 0;
+  if (run->params.plots && N + 1 > HMSA_PLOT_MAX_ROWS) {
+    char dpath[SA_STR_MAX];
+    snprintf(v->plot_csv, sizeof v->plot_csv, "history%s%s_decimated.csv", v->tag[0] ? "_" : "",
+             v->tag);
+    rc = sa_run_path(run, v->plot_csv, dpath);
+    if (!rc) rc = sa_csv_open(dpath, zener ? 6 : 5, names, units, &td);
+    if (!rc)
+      rc = hmsa_decimator_create(N + 1, zener ? 6 : 5, HMSA_PLOT_BINS, (1u << 3) | (1u << 4), td,
+                                 &dec);
+    if (rc) {
+      if (td) sa_csv_abort(&td);
+      sa_csv_abort(&t);
+      return sa_error_push(rc, __func__, __FILE__, __LINE__);
+    }
+  }
   HmsaIntegrator *it;
-  int rc = hmsa_integrator_create(m, &s->io, &it);
-  if (rc) { sa_csv_abort(&t); return sa_error_push(rc, __func__, __FILE__, __LINE__); }
+  rc = hmsa_integrator_create(m, &s->io, &it);
+  if (rc) {
+    sa_csv_abort(&t);
+    if (td) sa_csv_abort(&td);
+    hmsa_decimator_destroy(&dec);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
   double y[HMSA_NEQ_MAX];
   hmsa_model_rest(m, y);
   rc = hmsa_integrator_reset(it, 0.0, y);
-  long N = (long)floor(s->p.t_end / s->p.dt_out + 1e-9);
   double T0, U0;
   hmsa_model_energy(m, y, hmsa_model_b2(m, 0.0), &T0, &U0);
   double l3min = 1, l3max = 1, t0 = sa_time_now(), diss = 0.0, dprev = 0.0, tprev = 0.0;
@@ -440,6 +596,7 @@ static int run_history(const HmsaScene *s, const HmsaVariant *v, const SaRun *ru
     row[0] = tau, row[1] = y[0], row[2] = y[1], row[3] = hmsa_lambda3(y), row[4] = hmsa_dlambda3(y);
     if (zener) row[5] = y[2];
     rc = sa_csv_row(t, row);
+    if (!rc && dec) rc = hmsa_decimator_push(dec, row);
     l3min = fmin(l3min, row[3]);
     l3max = fmax(l3max, row[3]);
     double d = hmsa_model_dissipation(m, y, 0.0);
@@ -450,6 +607,13 @@ static int run_history(const HmsaScene *s, const HmsaVariant *v, const SaRun *ru
   /* keep the rows computed so far, also after a failure or an interruption */
   int rc2 = sa_csv_commit(&t);
   if (!rc) rc = rc2;
+  if (dec) {
+    rc2 = hmsa_decimator_finish(dec);
+    if (!rc2) sum_int(S, "plot_rows", hmsa_decimator_kept(dec));
+    if (!rc2) rc2 = sa_csv_commit(&td); else sa_csv_abort(&td);
+    hmsa_decimator_destroy(&dec);
+    if (!rc) rc = rc2;
+  }
   sum_real(S, "tau_end", (k - 1) * s->p.dt_out);
   sum_real(S, "lambda3_min", l3min);
   sum_real(S, "lambda3_max", l3max);
@@ -474,20 +638,97 @@ static int run_history(const HmsaScene *s, const HmsaVariant *v, const SaRun *ru
     SA_CHECK(hmsa_settling_time(m, &s->io, eq.lambda3, s->p.t_end, &ts));
     sum_real(S, "settling_time", ts);
   }
-  char title[256];
-  snprintf(title, sizeof title, "lambda3 %s", v->tag);
-  file_name(png, sizeof png, "history", v->tag, "png");
-  SA_CHECK(plot_xy(run, png, csv, 1, 4, title, "tau", "lambda3", "lines"));
-  file_name(png, sizeof png, "phase", v->tag, "png");
-  snprintf(title, sizeof title, "phase plane %s", v->tag);
-  SA_CHECK(plot_xy(run, png, csv, 4, 5, title, "lambda3", "dlambda3/dtau", "lines"));
+  v->ok = 1;
+  if (run->params.plots) {
+    HmsaFigure f;
+    for (int phase = 0; phase < 2; phase++) {
+      hmsa_figure_init(&f);
+      scene_title(s, f.title, sizeof f.title);
+      variant_text(s, v, -1, f.panel[0].title, sizeof f.panel[0].title);
+      snprintf(f.xlabel, sizeof f.xlabel, "%s", phase ? "λ_3" : "τ");
+      snprintf(f.ylabel, sizeof f.ylabel, "%s", phase ? "dλ_3/dτ" : "λ_3");
+      hmsa_figure_curve(&f, 0, v->plot_csv, phase ? "4:5" : "1:4", 0, HMSA_CURVE_LINE);
+      file_name(png, sizeof png, phase ? "phase" : "history", v->tag, "png");
+      figure_write(run, png, &f);
+    }
+  }
   return 0;
 }
 
 /* ------------------------------------------------------------------ statics scene */
 
-static int run_statics(const HmsaScene *s, const HmsaVariant *v, const SaRun *run, Summary *S) {
-  (void)s;
+/* equilibria_TAG.csv: the equilibria at the variant's S (kind 0) and the limit points of the
+ * path (kind 1, K_r = 0). */
+static int write_equilibria(const HmsaModel *m, const char *tag, const SaRun *run) {
+  double b2 = hmsa_model_b2_mean(m);
+  HmsaEquilibrium eq[HMSA_MAX_ROOTS];
+  double llp[HMSA_MAX_ROOTS], slp[HMSA_MAX_ROOTS];
+  int n, nlp;
+  SA_CHECK(hmsa_static_solve(m, b2, eq, &n));
+  SA_CHECK(hmsa_static_limit_points(m, b2, llp, slp, &nlp));
+  char csv[256], path[SA_STR_MAX];
+  file_name(csv, sizeof csv, "equilibria", tag, "csv");
+  SA_CHECK(sa_run_path(run, csv, path));
+  const char *names[] = {"lambda", "lambda3", "S", "K_r", "stable", "kind"};
+  const char *units[] = {"-", "-", "-", "-", "1 stable", "0 equilibrium/1 limit point"};
+  SaCsv *t;
+  SA_CHECK(sa_csv_open(path, 6, names, units, &t));
+  int rc = 0;
+  for (int i = 0; !rc && i < n; i++) {
+    double row[6] = {eq[i].lambda, eq[i].lambda3, m->S, eq[i].K_r, eq[i].stable, 0};
+    rc = sa_csv_row(t, row);
+  }
+  for (int i = 0; !rc && i < nlp; i++) {
+    double row[6] = {llp[i], 1.0 / (llp[i] * llp[i]), slp[i], 0, 0, 1};
+    rc = sa_csv_row(t, row);
+  }
+  if (!rc) rc = sa_csv_commit(&t); else sa_csv_abort(&t);
+  return rc;
+}
+
+/* Axis window of the statics figures: every equilibrium and limit point of the variants
+ * listed, the rest state, with a margin (the path itself runs to lambda3 = 25). */
+static void statics_window(const HmsaScene *s, int only, HmsaFigure *f) {
+  double xmax = 1.2, ymin = 0.0, ymax = 1.0;
+  for (int i = 0; i < s->nvar; i++) {
+    if (only >= 0 && i != only) continue;
+    const HmsaModel *m = &s->var[i].m;
+    double b2 = hmsa_model_b2_mean(m), llp[HMSA_MAX_ROOTS], slp[HMSA_MAX_ROOTS];
+    HmsaEquilibrium eq[HMSA_MAX_ROOTS];
+    int n = 0, nlp = 0;
+    if (hmsa_static_solve(m, b2, eq, &n)) { sa_error_clear(); n = 0; }
+    if (hmsa_static_limit_points(m, b2, llp, slp, &nlp)) { sa_error_clear(); nlp = 0; }
+    for (int k = 0; k < n; k++) xmax = fmax(xmax, eq[k].lambda3);
+    ymin = fmin(ymin, m->S), ymax = fmax(ymax, m->S);
+    for (int k = 0; k < nlp; k++) {
+      xmax = fmax(xmax, 1.0 / (llp[k] * llp[k]));
+      ymin = fmin(ymin, slp[k]), ymax = fmax(ymax, slp[k]);
+    }
+  }
+  f->xr[0] = 0.0, f->xr[1] = 1.25 * xmax;
+  double pad = 0.25 * (ymax - ymin) + 0.5;
+  f->yr[0] = ymin - pad, f->yr[1] = ymax + pad;
+}
+
+/* Path (stable solid, unstable dashed), equilibria (filled stable, open unstable) and limit
+ * points (crosses) of one variant into panel 0 of f, in colour c. */
+static void statics_curves(HmsaFigure *f, const char *path_csv, const char *eq_csv, int c) {
+  hmsa_figure_curve(f, 0, path_csv, "2:($5==1?$3:1/0)", c, HMSA_CURVE_LINE);
+  hmsa_figure_curve(f, 0, path_csv, "2:($5==0?$3:1/0)", c, HMSA_CURVE_DASH);
+  hmsa_figure_curve(f, 0, eq_csv, "2:($6==1?$3:1/0)", c, HMSA_CURVE_MARK);
+  hmsa_figure_curve(f, 0, eq_csv, "2:($6==0&&$5==1?$3:1/0)", c, HMSA_CURVE_POINTS);
+  hmsa_figure_curve(f, 0, eq_csv, "2:($6==0&&$5==0?$3:1/0)", c, HMSA_CURVE_OPEN);
+}
+
+static void statics_legend(HmsaFigure *f) {
+  hmsa_figure_legend(f, "stable (K_r > 0)", 6, HMSA_CURVE_LINE);
+  hmsa_figure_legend(f, "unstable", 6, HMSA_CURVE_DASH);
+  hmsa_figure_legend(f, "equilibrium, stable", 6, HMSA_CURVE_POINTS);
+  hmsa_figure_legend(f, "equilibrium, unstable", 6, HMSA_CURVE_OPEN);
+  hmsa_figure_legend(f, "limit point", 6, HMSA_CURVE_MARK);
+}
+
+static int run_statics(const HmsaScene *s, HmsaVariant *v, const SaRun *run, Summary *S) {
   const HmsaModel *m = &v->m;
   SA_CHECK(write_statics(S, m, NULL));
   /* the relaxed equilibrium path in the prestress: S(lambda) = F_r + S at the mean load */
@@ -509,15 +750,48 @@ static int run_statics(const HmsaScene *s, const HmsaVariant *v, const SaRun *ru
     if (rc) { sa_csv_abort(&t); return sa_error_push(rc, __func__, __FILE__, __LINE__); }
   }
   SA_CHECK(sa_csv_commit(&t));
-  file_name(png, sizeof png, "statics", v->tag, "png");
-  SA_CHECK(plot_xy(run, png, csv, 2, 3, "relaxed equilibria: prestress against lambda3",
-                   "lambda3", "S", "lines"));
+  SA_CHECK(write_equilibria(m, v->tag, run));
+  v->ok = 1;
+  if (run->params.plots) {
+    char eqcsv[256];
+    file_name(eqcsv, sizeof eqcsv, "equilibria", v->tag, "csv");
+    HmsaFigure f;
+    hmsa_figure_init(&f);
+    snprintf(f.title, sizeof f.title, "relaxed equilibria: ");
+    scene_title(s, f.title + strlen(f.title), sizeof f.title - strlen(f.title));
+    variant_text(s, v, -1, f.panel[0].title, sizeof f.panel[0].title);
+    snprintf(f.xlabel, sizeof f.xlabel, "λ_3");
+    snprintf(f.ylabel, sizeof f.ylabel, "prestress S");
+    statics_window(s, (int)(v - s->var), &f);
+    statics_curves(&f, csv, eqcsv, 0);
+    statics_legend(&f);
+    file_name(png, sizeof png, "statics", v->tag, "png");
+    figure_write(run, png, &f);
+  }
   return 0;
 }
 
 /* ------------------------------------------------------------------ poincare scene */
 
-static int run_poincare(const HmsaScene *s, const HmsaVariant *v, const SaRun *run, Summary *S,
+static void poincare_figure(const HmsaScene *s, HmsaFigure *f) {
+  hmsa_figure_init(f);
+  snprintf(f->title, sizeof f->title, "steady orbit and Poincaré section: ");
+  scene_title(s, f->title + strlen(f->title), sizeof f->title - strlen(f->title));
+  snprintf(f->xlabel, sizeof f->xlabel, "λ_3");
+  snprintf(f->ylabel, sizeof f->ylabel, "dλ_3/dτ");
+}
+
+/* orbit (last periods) in colour c, section points in black */
+static void poincare_curves(HmsaFigure *f, int p, const HmsaVariant *v, int c) {
+  char ocsv[256], pcsv[256];
+  file_name(ocsv, sizeof ocsv, "orbit", v->tag, "csv");
+  file_name(pcsv, sizeof pcsv, "poincare", v->tag, "csv");
+  hmsa_figure_curve(f, p, ocsv, "4:5", c, HMSA_CURVE_THIN);
+  hmsa_figure_curve(f, p, pcsv, "5:6", 6, HMSA_CURVE_DOTS);
+  hmsa_figure_legend(f, "Poincaré section, τ = 2πn/Ω", 6, HMSA_CURVE_DOTS);
+}
+
+static int run_poincare(const HmsaScene *s, HmsaVariant *v, const SaRun *run, Summary *S,
                         SaProgress *prog) {
   const HmsaModel *m = &v->m;
   int n = hmsa_model_neq(m), zener = m->model == HMSA_ZENER;
@@ -594,23 +868,30 @@ static int run_poincare(const HmsaScene *s, const HmsaVariant *v, const SaRun *r
     return rc;
   }
   if (run->params.plots) {
-    char pp[SA_STR_MAX], body[2048], pcsv[256], ocsv[256];
+    HmsaFigure f;
+    poincare_figure(s, &f);
+    variant_text(s, v, -1, f.panel[0].title, sizeof f.panel[0].title);
+    char t[96];
+    snprintf(t, sizeof t, "steady orbit, last %d periods", s->pc.orbit_periods);
+    hmsa_figure_legend(&f, t, 0, HMSA_CURVE_THIN);
+    poincare_curves(&f, 0, v, 0);
     file_name(png, sizeof png, "poincare", v->tag, "png");
-    file_name(pcsv, sizeof pcsv, "poincare", v->tag, "csv");
-    file_name(ocsv, sizeof ocsv, "orbit", v->tag, "csv");
-    SA_CHECK(sa_run_path(run, png, pp));
-    snprintf(body, sizeof body,
-             "set datafile separator ','\nset key top right\nset title 'Poincare map %s'\n"
-             "set xlabel 'lambda3'\nset ylabel 'dlambda3/dtau'\n"
-             "plot '%s' using 4:5 with lines lc rgb '#a0a0a0' title 'steady orbit', "
-             "'%s' using 5:6 with points pt 7 ps 0.6 lc rgb '#d01010' title 'tau = n 2pi/Omega'\n",
-             v->tag, ocsv, pcsv);
-    if (sa_plot_script(pp, body)) sa_error_clear();
+    figure_write(run, png, &f);
   }
+  v->ok = 1;
   return 0;
 }
 
 /* ------------------------------------------------------------------ sweep scene */
+
+static void sweep_figure(const HmsaScene *s, HmsaFigure *f, int inplane) {
+  hmsa_figure_init(f);
+  snprintf(f->title, sizeof f->title, "steady amplitude: ");
+  scene_title(s, f->title + strlen(f->title), sizeof f->title - strlen(f->title));
+  snprintf(f->xlabel, sizeof f->xlabel, "forcing frequency Ω");
+  snprintf(f->ylabel, sizeof f->ylabel, "%s", inplane ? "a = (max λ - min λ)/2" : "a_3 = (max λ_3 - min λ_3)/2");
+  f->yr[0] = 0.0;
+}
 
 typedef struct {
   HmsaModel m;
@@ -632,7 +913,7 @@ static int peak_amplitude(double omega, double *amp, void *ctx) {
   return 0;
 }
 
-static int run_sweep(const HmsaScene *s, const HmsaVariant *v, const SaRun *run, Summary *S) {
+static int run_sweep(const HmsaScene *s, HmsaVariant *v, const SaRun *run, Summary *S) {
   const HmsaModel *m = &v->m;
   HmsaEquilibrium eq;
   SA_CHECK(write_statics(S, m, &eq));
@@ -751,30 +1032,175 @@ static int run_sweep(const HmsaScene *s, const HmsaVariant *v, const SaRun *run,
   }
   free(buf);
   free(status);
+  v->ok = 1;
   if (run->params.plots) {
-    char ppath[SA_STR_MAX], body[2048];
     for (int pass = 0; pass < 2; pass++) {
-      file_name(png, sizeof png, pass ? "sweep_inplane" : "sweep", v->tag, "png");
-      SA_CHECK(sa_run_path(run, png, ppath));
+      HmsaFigure f;
+      sweep_figure(s, &f, pass);
+      variant_text(s, v, -1, f.panel[0].title, sizeof f.panel[0].title);
       const char *c = pass ? csv2 : csv;
-      int k = snprintf(body, sizeof body,
-                       "set datafile separator ','\nset key top right\nset title 'steady amplitude %s'\n"
-                       "set xlabel 'Omega'\nset ylabel '%s'\n"
-                       "plot '%s' using 1:($3==0?$2:1/0) with linespoints pt 7 ps 0.5 title 'from rest'",
-                       v->tag, pass ? "a (lambda)" : "a3 (lambda3)", c);
-      if (w->continuation && k > 0 && (size_t)k < sizeof body)
-        k += snprintf(body + k, sizeof body - (size_t)k,
-                      ", '%s' using 1:($3==1?$2:1/0) with lines title 'continuation up', "
-                      "'%s' using 1:($3==2?$2:1/0) with lines dt 2 title 'continuation down'",
-                      c, c);
-      if (k > 0 && (size_t)k + 2 < sizeof body) strcat(body, "\n");
-      if (sa_plot_script(ppath, body)) sa_error_clear();
+      hmsa_figure_curve(&f, 0, c, "1:($3==0?$2:1/0)", 0, HMSA_CURVE_LINEPOINTS);
+      hmsa_figure_legend(&f, "from rest", 0, HMSA_CURVE_LINEPOINTS);
+      if (w->continuation) {
+        hmsa_figure_curve(&f, 0, c, "1:($3==1?$2:1/0)", 1, HMSA_CURVE_LINE);
+        hmsa_figure_curve(&f, 0, c, "1:($3==2?$2:1/0)", 2, HMSA_CURVE_DASH);
+        hmsa_figure_legend(&f, "continuation, Ω increasing", 1, HMSA_CURVE_LINE);
+        hmsa_figure_legend(&f, "continuation, Ω decreasing", 2, HMSA_CURVE_DASH);
+      }
+      file_name(png, sizeof png, pass ? "sweep_inplane" : "sweep", v->tag, "png");
+      figure_write(run, png, &f);
     }
   }
   return 0;
 }
 
 /* ------------------------------------------------------------------ run */
+
+/* Histories under a step load: the relaxed equilibrium lambda3 of each panel, dotted, where
+ * every curve of the panel has the same one (the curve key does not change the statics). */
+static void history_reference(const HmsaScene *s, const Layout *L, HmsaFigure *f) {
+  if (s->var[0].m.loading != HMSA_LOAD_CONST) return;
+  double ref[HMSA_FIG_MAX_PANELS];
+  int state[HMSA_FIG_MAX_PANELS] = {0}; /* 0 unset, 1 one value, 2 differs or none */
+  for (int i = 0; i < s->nvar; i++) {
+    const HmsaVariant *v = &s->var[i];
+    int p = layout_panel(s, L, v);
+    HmsaEquilibrium eq[HMSA_MAX_ROOTS];
+    int n, best = -1;
+    if (hmsa_static_solve(&v->m, v->m.b2, eq, &n)) { sa_error_clear(); n = 0; }
+    for (int k = 0; k < n; k++)
+      if (eq[k].stable && (best < 0 || fabs(eq[k].lambda - 1) < fabs(eq[best].lambda - 1))) best = k;
+    if (best < 0) state[p] = 2;
+    else if (state[p] == 0) ref[p] = eq[best].lambda3, state[p] = 1;
+    else if (state[p] == 1 && fabs(ref[p] - eq[best].lambda3) > 1e-12) state[p] = 2;
+  }
+  for (int i = 0; i < s->nvar; i++) {
+    const HmsaVariant *v = &s->var[i];
+    int p = layout_panel(s, L, v);
+    if (state[p] != 1 || !v->ok) continue;
+    char u[64];
+    snprintf(u, sizeof u, "1:(%.12g)", ref[p]);
+    hmsa_figure_curve(f, p, v->plot_csv, u, 6, HMSA_CURVE_REF);
+    state[p] = 3;
+    hmsa_figure_legend(f, "relaxed equilibrium", 6, HMSA_CURVE_REF);
+  }
+}
+
+/* Figures with every variant (issue 15): overlay_*.png, one per quantity; the curves of a panel
+ * differ in the first listed key, the panels in the others (see Layout). */
+static void write_overlays(const HmsaScene *s, const SaRun *run) {
+  HmsaFigure f;
+  Layout L;
+  if (!strcmp(s->p.analysis, "statics")) {
+    /* the path does not depend on S: one curve per b2, the equilibria of every S on it */
+    hmsa_figure_init(&f);
+    snprintf(f.title, sizeof f.title, "relaxed equilibria: ");
+    scene_title(s, f.title + strlen(f.title), sizeof f.title - strlen(f.title));
+    snprintf(f.xlabel, sizeof f.xlabel, "λ_3");
+    snprintf(f.ylabel, sizeof f.ylabel, "prestress S");
+    statics_window(s, -1, &f);
+    int bdim = -1;
+    for (int d = 0; d < s->ndim; d++)
+      if (!strcmp(s->dim_name[d], "b2")) bdim = d;
+    char ptitle[HMSA_FIG_TEXT] = "";
+    for (int d = 0; d < s->ndim; d++)
+      if (d != bdim && s->dim_list[d]->n > 1 && strcmp(s->dim_name[d], "S")) bdim = -2;
+    if (bdim == -2) return; /* other listed keys change the path: per-variant figures only */
+    for (int i = 0; i < s->nvar; i++) {
+      const HmsaVariant *v = &s->var[i];
+      int c = bdim >= 0 ? v->idx[bdim] : 0;
+      char path_csv[256], eq_csv[256], t[96];
+      file_name(path_csv, sizeof path_csv, "statics", v->tag, "csv");
+      file_name(eq_csv, sizeof eq_csv, "equilibria", v->tag, "csv");
+      statics_curves(&f, path_csv, eq_csv, c);
+      if (bdim >= 0) {
+        dim_label(t, sizeof t, "b2", s->dim_list[bdim]->v[v->idx[bdim]]);
+        hmsa_figure_legend(&f, t, c, HMSA_CURVE_LINE);
+      }
+    }
+    for (int d = 0; d < s->ndim; d++)
+      if (!strcmp(s->dim_name[d], "S") && s->dim_list[d]->n > 1) {
+        snprintf(ptitle, sizeof ptitle, "equilibria at S = ");
+        for (int k = 0; k < s->dim_list[d]->n; k++) {
+          size_t n = strlen(ptitle);
+          snprintf(ptitle + n, sizeof ptitle - n, "%s%g", k ? ", " : "", s->dim_list[d]->v[k]);
+        }
+      }
+    snprintf(f.panel[0].title, sizeof f.panel[0].title, "%s", ptitle);
+    statics_legend(&f);
+    figure_write(run, "overlay_statics.png", &f);
+    return;
+  }
+  if (layout_make(s, curve_dim(s), &L)) {
+    sa_log(SA_LOG_INFO, "hmsa", "more than %d panels: no overlay figures", HMSA_FIG_MAX_PANELS);
+    return;
+  }
+  if (!strcmp(s->p.analysis, "history")) {
+    for (int phase = 0; phase < 2; phase++) {
+      overlay_begin(s, &L, &f, HMSA_CURVE_LINE);
+      snprintf(f.xlabel, sizeof f.xlabel, "%s", phase ? "λ_3" : "τ");
+      snprintf(f.ylabel, sizeof f.ylabel, "%s", phase ? "dλ_3/dτ" : "λ_3");
+      /* phase planes: the least damped (last) curve underneath */
+      for (int k = 0; k < s->nvar; k++) {
+        const HmsaVariant *v = &s->var[phase ? s->nvar - 1 - k : k];
+        if (v->ok)
+          hmsa_figure_curve(&f, layout_panel(s, &L, v), v->plot_csv, phase ? "4:5" : "1:4",
+                            curve_color(&L, v), HMSA_CURVE_LINE);
+      }
+      if (!phase) history_reference(s, &L, &f);
+      if (!phase && s->var[0].m.model == HMSA_PC) {
+        /* no dissipation: the orbit repeats, a few periods compare amplitude and frequency */
+        double Tmax = 0.0;
+        for (int i = 0; i < s->nvar; i++) {
+          HmsaEquilibrium eq[HMSA_MAX_ROOTS];
+          int n;
+          if (hmsa_static_solve(&s->var[i].m, s->var[i].m.b2, eq, &n)) { sa_error_clear(); continue; }
+          for (int k = 0; k < n; k++)
+            if (eq[k].stable && eq[k].omega_r > 0) Tmax = fmax(Tmax, 2.0 * HMSA_PI / eq[k].omega_r);
+        }
+        if (Tmax > 0 && 3.0 * Tmax < s->p.t_end) {
+          f.xr[0] = 0.0, f.xr[1] = 3.0 * Tmax;
+          size_t k = strlen(f.title);
+          snprintf(f.title + k, sizeof f.title - k, ", τ ≤ %.3g shown (of %g)", 3.0 * Tmax, s->p.t_end);
+        }
+      }
+      figure_write(run, phase ? "overlay_phase.png" : "overlay_history.png", &f);
+    }
+  } else if (!strcmp(s->p.analysis, "poincare")) {
+    poincare_figure(s, &f);
+    f.rows = L.rows, f.cols = L.cols, f.npanels = L.npanels;
+    for (int i = 0; i < s->nvar; i++) {
+      const HmsaVariant *v = &s->var[i];
+      int p = layout_panel(s, &L, v);
+      if (!f.panel[p].title[0]) variant_text(s, v, L.cd, f.panel[p].title, sizeof f.panel[p].title);
+      char t[96];
+      dim_label(t, sizeof t, s->dim_name[L.cd], s->dim_list[L.cd]->v[v->idx[L.cd]]);
+      hmsa_figure_legend(&f, t, curve_color(&L, v), HMSA_CURVE_LINE);
+      if (v->ok) poincare_curves(&f, p, v, curve_color(&L, v));
+    }
+    figure_write(run, "overlay_poincare.png", &f);
+  } else {
+    for (int pass = 0; pass < 2; pass++) {
+      HmsaFigure g;
+      sweep_figure(s, &g, pass);
+      overlay_begin(s, &L, &f, HMSA_CURVE_LINEPOINTS);
+      memcpy(f.title, g.title, sizeof f.title);
+      memcpy(f.xlabel, g.xlabel, sizeof f.xlabel);
+      memcpy(f.ylabel, g.ylabel, sizeof f.ylabel);
+      f.yr[0] = 0.0;
+      snprintf(f.title + strlen(f.title), sizeof f.title - strlen(f.title), ", from rest");
+      for (int i = 0; i < s->nvar; i++) {
+        const HmsaVariant *v = &s->var[i];
+        char c[256];
+        file_name(c, sizeof c, pass ? "sweep_inplane" : "sweep", v->tag, "csv");
+        if (v->ok)
+          hmsa_figure_curve(&f, layout_panel(s, &L, v), c, "1:($3==0?$2:1/0)", curve_color(&L, v),
+                            HMSA_CURVE_LINEPOINTS);
+      }
+      figure_write(run, pass ? "overlay_sweep_inplane.png" : "overlay_sweep.png", &f);
+    }
+  }
+}
 
 static int hmsa_run(void *scene, SaRun *run) {
   HmsaScene *s = scene;
@@ -794,7 +1220,7 @@ static int hmsa_run(void *scene, SaRun *run) {
   }
   int rc = 0;
   for (int i = 0; i < s->nvar && !rc; i++) {
-    const HmsaVariant *v = &s->var[i];
+    HmsaVariant *v = &s->var[i];
     if (s->nvar > 1) fprintf(S.f, "\n[%s]\n", v->tag);
     double t0 = sa_time_now();
     if (!strcmp(s->p.analysis, "history")) rc = run_history(s, v, run, &S);
@@ -808,6 +1234,7 @@ static int hmsa_run(void *scene, SaRun *run) {
                     v->tag[0] ? v->tag : "(single)", sa_time_now() - t0);
   }
   sa_progress_finish(&prog);
+  if (!rc && s->nvar > 1 && run->params.plots) write_overlays(s, run);
   /* the summary keeps what was computed, also after a failure or an interruption */
   int rc2 = sa_file_commit(&sf);
   if (rc) return sa_error_push(rc, __func__, __FILE__, __LINE__);
