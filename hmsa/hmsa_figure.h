@@ -26,8 +26,8 @@ void hmsa_decimator_destroy(HmsaDecimator **d);
 
 /* Above this many rows a history is plotted from a decimated copy. */
 #define HMSA_PLOT_MAX_ROWS 20000
-/* Bins of the decimated copy: ~2 per pixel column of the widest figure. */
-#define HMSA_PLOT_BINS 4000
+/* Bins of the decimated copy: ~10 per pixel column (a phase-plane loop stays round). */
+#define HMSA_PLOT_BINS 10000
 
 /* ---- figures ---- */
 typedef enum {
