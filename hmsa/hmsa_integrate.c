@@ -354,7 +354,7 @@ static int get_dky(HmsaIntegrator *it, double tout, N_Vector out) {
 static int diagnose_domain(HmsaIntegrator *it, int rc_sun) {
   const double *y = N_VGetArrayPointer(it->ylast);
   double lm2 = it->m->lambda_max * it->m->lambda_max;
-  double I1 = 2 * y[0] * y[0] + pow(y[0], -4);
+  double y2 = y[0] * y[0], I1 = 2 * y2 + 1.0 / (y2 * y2);
   double h = 0.0;
   HmsaIntegratorStats st;
   hmsa_integrator_get_stats(it, &st);
@@ -420,7 +420,7 @@ int hmsa_integrator_advance(HmsaIntegrator *it, double tout, double *yout) {
         if (it->m->model == HMSA_PC) {
           const double *yl = N_VGetArrayPointer(ytmp);
           double lm2 = it->m->lambda_max * it->m->lambda_max, l = yl[0];
-          double gap = 3.0 * lm2 - (2 * l * l + pow(l, -4));
+          double gap = 3.0 * lm2 - (2 * l * l + 1.0 / (l * l * l * l));
           if (it->domain_fails > 0 || gap < 1e-6 * 3.0 * lm2) {
             N_VScale(1.0, ytmp, it->ylast);
             it->tlast = tret;

@@ -73,14 +73,16 @@ int hmsa_model_pc_domain(const HmsaModel *m, double *lo, double *hi) {
   double a = 1e-6, b = 1.0;
   for (int i = 0; i < 200; i++) { /* lower end on (0,1) */
     double x = 0.5 * (a + b);
-    if (2 * x * x + pow(x, -4) >= lim) a = x; else b = x;
+    double x2 = x * x;
+    if (2 * x2 + 1.0 / (x2 * x2) >= lim) a = x; else b = x;
   }
   *lo = b; /* inside */
   a = 1.0;
   b = m->lambda_max * 2.0;
   for (int i = 0; i < 200; i++) {
     double x = 0.5 * (a + b);
-    if (2 * x * x + pow(x, -4) >= lim) b = x; else a = x;
+    double x2 = x * x;
+    if (2 * x2 + 1.0 / (x2 * x2) >= lim) b = x; else a = x;
   }
   *hi = a;
   return 0;
@@ -263,7 +265,8 @@ static int fn_stiff(const HmsaModel *m, double l, double b2, double *val) {
   double K;
   int rc = hmsa_static_force(m, l, b2, NULL, &K);
   if (rc) return rc;
-  *val = m->model == HMSA_ZENER ? K * pow(l, 6) : K;
+  double l2 = l * l;
+  *val = m->model == HMSA_ZENER ? K * (l2 * l2 * l2) : K;
   return 0;
 }
 
@@ -377,7 +380,7 @@ int hmsa_linearise(const HmsaModel *m, double l0, double b2, HmsaEquilibrium *eq
   double K;
   int rc = hmsa_static_force(m, l0, b2, NULL, &K);
   if (rc) return SA_ERROR(rc, "equilibrium lambda = %g outside the model's domain", l0);
-  double M0 = 1.0 + 2.0 * m->c / pow(l0, 6);
+  double l02 = l0 * l0, M0 = 1.0 + 2.0 * m->c / (l02 * l02 * l02);
   eq->lambda = l0;
   eq->lambda3 = 1.0 / (l0 * l0);
   eq->K_r = K;
