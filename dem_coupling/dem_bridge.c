@@ -395,6 +395,9 @@ int dem_bridge_setup(DemBridge *b, const DemParams *params) {
   SA_CHECK(send(b, "region simbox block %.17g %.17g %.17g %.17g %.17g %.17g units box", p->box_lo[0],
                 p->box_hi[0], p->box_lo[1], p->box_hi[1], p->box_lo[2], p->box_hi[2]));
   SA_CHECK(send(b, "create_box 3 simbox"));
+  /* spatial sorting with an explicit bin (LIGGGHTS derives it from the largest grain, and
+   * aborts when there is none yet, e.g. at the set-up pass of dem_bridge_finalize_walls) */
+  SA_CHECK(send(b, "atom_modify sort 1000 %.17g", p->diameter));
   SA_CHECK(send(b, "neighbor %.17g bin", p->skin));
   SA_CHECK(send(b, "neigh_modify delay 0"));
   SA_CHECK(send(b, "fix m1 all property/global youngsModulus peratomtype %.17g %.17g %.17g", p->young,
