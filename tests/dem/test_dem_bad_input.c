@@ -3,6 +3,7 @@
  * process if it reached LIGGGHTS. After the refusals the same bridge still sets up and runs
  * (with rolling friction on, the one contact-model variant the other tests do not use). */
 #include <stddef.h>
+#include <unistd.h>
 
 #include "dem_test_util.h"
 
@@ -136,6 +137,14 @@ int main(void) {
          SA_ERR_INPUT, "finalized");
   T_CHECK(dem_bridge_run(b, 200));
   t_true("the bridge still runs after the refusals: 50 grains", dem_bridge_count(b) == 50);
+  char rpath[64];
+  snprintf(rpath, sizeof rpath, "/tmp/softact_test_dem_%ld.restart", (long)getpid());
+  T_CHECK(dem_bridge_write_restart(b, rpath));
+  FILE *f = fopen(rpath, "rb");
+  long size = 0;
+  if (f) fseek(f, 0, SEEK_END), size = ftell(f), fclose(f);
+  t_true("a valid restart path gives a non-empty restart file", size > 0);
+  remove(rpath);
   dem_bridge_destroy(&b);
   dem_bridge_destroy(&b); /* NULL is accepted */
   return t_failures ? 1 : 0;
