@@ -77,8 +77,27 @@ typedef struct {
 
 FemSolverParams fem_solver_params_default(void);
 
+/* Why the last Newton substep stopped (as PETSc's SNESConvergedReason): > 0 converged,
+ * < 0 diverged. fem_newton_reason_string gives the name. */
+typedef enum {
+  FEM_NEWTON_ITERATING = 0,
+  FEM_CONVERGED_RESIDUAL = 1,      /* |R| <= rtol max(|f_int|, |f_ext|) + atol (and volume) */
+  FEM_CONVERGED_UPDATE = 2,        /* |du| <= utol |u| (round-off floor of a stiff problem) */
+  FEM_DIVERGED_MAX_ITER = -1,      /* max_iter factorisations (4 max_iter iterations) */
+  FEM_DIVERGED_STALLED = -2,       /* |R| not halved in max_stall consecutive iterations */
+  FEM_DIVERGED_GROWTH = -3,        /* |R| above 1e6 times its first value */
+  FEM_DIVERGED_DOMAIN = -4,        /* inverted element / law or domain hook out of its domain
+                                    * after the line search */
+  FEM_DIVERGED_NAN = -5,           /* non-finite residual after the line search */
+  FEM_DIVERGED_LINEAR_SOLVE = -6,  /* tangent singular for CHOLMOD and UMFPACK */
+  FEM_DIVERGED_BORDERED = -7       /* volume control: dV/dp = 0 */
+} FemNewtonReason;
+
+const char *fem_newton_reason_string(FemNewtonReason r);
+
 /* Outcome of the last solve()/step_dynamic(). */
 typedef struct {
+  FemNewtonReason newton_reason; /* of the last Newton substep (converged or the last failure) */
   int substeps;      /* converged substeps */
   int cuts;          /* failed substeps (retried with a smaller increment) */
   int newton_iters;  /* total Newton iterations incl. failed substeps */
@@ -101,6 +120,8 @@ typedef struct {
   int n_reuse;              /* Newton directions from reused factors (incl. REUSE predictors) */
   int n_interface;          /* elements scattered serially after the threaded slabs */
   double asymmetry;         /* max|K-K^T|/max|K| of the last tangent checked */
+  int n_pattern_rebuilds;   /* pattern + analysis rebuilt because a contributor coupled a node
+                             * pair outside it */
 } FemSolverStats;
 
 /* mesh [borrowed, must outlive the solver]; mats [in] one per mesh region (copied). */
@@ -133,6 +154,18 @@ void fem_solver_clear_nodal_forces(FemSolver *s);
  * state the solve began from, zero accelerations, and time advanced by dt; with 0 the
  * velocities after a static solve are zero (a state at rest). */
 int fem_solver_set_static_interval(FemSolver *s, double dt);
+
+/* Domain hook: called on every Newton trial state x [in] 3 * nnodes; a non-zero return (> 0)
+ * marks it outside the model's domain, and the line search backtracks as for an inverted
+ * element (FEM_DIVERGED_DOMAIN if it cannot). */
+typedef int (*FemDomainCheck)(const FemSolver *s, const double *x, void *ctx);
+void fem_solver_set_domain_check(FemSolver *s, FemDomainCheck fn, void *ctx);
+
+/* Linear spring of stiffness k [N/m] between the displacements of nodes a and b (force
+ * k (u_a - u_b) on a, the opposite on b); b = -1 ties a to its reference position (a weak
+ * support for a floating body). Before setup the pair enters the pattern; after setup the
+ * first tangent assembly rebuilds the pattern (FemSolverStats.n_pattern_rebuilds). */
+int fem_solver_add_spring(FemSolver *s, int a, int b, double k);
 
 /* Monitor called after every converged substep (static) / step (dynamic); a non-zero return
  * stops the solve with that code. */

@@ -9,6 +9,11 @@ find_package(OpenMP COMPONENTS C)
 set(_sa_fem_sources
   ${CMAKE_CURRENT_LIST_DIR}/fem_linsolve.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_solver.c
+  ${CMAKE_CURRENT_LIST_DIR}/fem_dofmap.c
+  ${CMAKE_CURRENT_LIST_DIR}/fem_assemble.c
+  ${CMAKE_CURRENT_LIST_DIR}/fem_newton.c
+  ${CMAKE_CURRENT_LIST_DIR}/fem_continuation.c
+  ${CMAKE_CURRENT_LIST_DIR}/fem_dynamics.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_bending.c)
 foreach(_f fem_actuator.c fem_coupling.c fem_scene.c)
   if(EXISTS ${CMAKE_CURRENT_LIST_DIR}/${_f})

@@ -1,0 +1,386 @@
+/* fem_assemble.c - assembly as a sum of contributions (fem_contrib.h):
+ *   bodies      element kernels (fem_element_tl, the region's law), threaded over slabs that
+ *               share no node, the interface elements serially: f_int, K_int
+ *   pressure    follower pressure on the pressure faces (fem_face_pressure): q per unit
+ *               pressure, its load stiffness p K_q, enclosed volume V and dV/du
+ *   dead loads  nodal (coupling) forces and lumped-mass gravity at the ramp parameter
+ *               (fem_continuation.c: fem_cont_apply_loads), f_dead
+ *   contributors springs (fem_solver_add_spring) and any FemContributor: f_c, K_c
+ * Residual R = f_int + f_c - f_dead - p q (fem_newton.c), tangent K = K_int + p K_q + K_c.
+ * A contributor's block for a node pair outside the pattern triggers one pattern rebuild
+ * (fem_dofmap_rebuild) and a second pass. Bodies, pressure and dead loads keep their dedicated
+ * arrays so the built-in path computes exactly what it computed before contributors existed. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fem_element.h"
+#include "fem_solver_priv.h"
+#include "sa_error.h"
+#include "sa_log.h"
+
+struct FemAsmView {
+  FemSolver *s;
+  AsmBuf *bf;
+  const double *x;
+  int want_K;
+};
+
+struct FemPairSink {
+  int *pairs, n, cap, err;
+};
+
+const FemMesh *fem_asm_mesh(const FemAsmView *v) { return v->s->m; }
+const double *fem_asm_positions(const FemAsmView *v) { return v->x; }
+double fem_asm_time(const FemAsmView *v) { return v->s->time; }
+int fem_asm_wants_tangent(const FemAsmView *v) { return v->want_K; }
+
+void fem_asm_add_force(FemAsmView *v, int a, const double f[3]) {
+  for (int i = 0; i < 3; i++) v->bf->fcon[3 * a + i] += f[i];
+}
+
+void fem_asm_add_block(FemAsmView *v, int a, int b, const double K[9]) {
+  if (!v->want_K) return;
+  FemSolver *s = v->s;
+  int t = fem_dofmap_find_pair(s, a, b);
+  if (t < 0) { /* outside the pattern: remember, the assembly rebuilds and repeats */
+    FemAssembly *as = &s->as;
+    if (as->nmissing == as->cap_missing) {
+      int cap = as->cap_missing ? 2 * as->cap_missing : 64;
+      int *p = realloc(as->missing, 2 * (size_t)cap * sizeof *p);
+      if (!p) return; /* reported by the repeat pass (pair still missing) */
+      as->missing = p;
+      as->cap_missing = cap;
+    }
+    as->missing[2 * as->nmissing] = a;
+    as->missing[2 * as->nmissing + 1] = b;
+    as->nmissing++;
+    return;
+  }
+  const int *sl = s->dm.slot9 + (size_t)t * 9;
+  for (int k = 0; k < 9; k++)
+    if (sl[k] >= 0) v->bf->val[sl[k]] += K[k];
+}
+
+void fem_pairs_add(FemPairSink *sink, int a, int b) {
+  if (sink->err) return;
+  if (sink->n == sink->cap) {
+    int cap = sink->cap ? 2 * sink->cap : 64;
+    int *p = realloc(sink->pairs, 2 * (size_t)cap * sizeof *p);
+    if (!p) {
+      sink->err = 1;
+      return;
+    }
+    sink->pairs = p;
+    sink->cap = cap;
+  }
+  sink->pairs[2 * sink->n] = a;
+  sink->pairs[2 * sink->n + 1] = b;
+  sink->n++;
+}
+
+int fem_solver_add_contributor(FemSolver *s, const FemContributor *c) {
+  SA_REQUIRE(c && c->eval, SA_ERR_INPUT, "contributor without eval");
+  FemAssembly *as = &s->as;
+  if (as->ncontrib == as->cap_contrib) {
+    int cap = as->cap_contrib ? 2 * as->cap_contrib : 4;
+    FemContributor *p = realloc(as->contrib, (size_t)cap * sizeof *p);
+    SA_REQUIRE(p, SA_ERR_MEMORY, "cannot grow the contributor list");
+    as->contrib = p;
+    as->cap_contrib = cap;
+  }
+  as->contrib[as->ncontrib++] = *c;
+  if (s->setup_done && !as->fcon) SA_CALLOC(as->fcon, s->ndof);
+  if (s->setup_done && !as->rb.fcon) SA_CALLOC(as->rb.fcon, s->ndof);
+  return 0;
+}
+
+int fem_asm_candidate_pairs(FemSolver *s, int **pairs, int *npairs) {
+  FemPairSink sink = {0};
+  for (int c = 0; c < s->as.ncontrib; c++) {
+    const FemContributor *k = &s->as.contrib[c];
+    if (!k->candidates) continue;
+    int rc = k->candidates(k->ctx, s->m, &sink);
+    if (rc) {
+      free(sink.pairs);
+      return sa_error_push(rc, __func__, __FILE__, __LINE__);
+    }
+  }
+  if (sink.err) {
+    free(sink.pairs);
+    return SA_ERROR(SA_ERR_MEMORY, "contributor pairs");
+  }
+  for (int k = 0; k < sink.n; k++)
+    SA_REQUIRE(sink.pairs[2 * k] >= 0 && sink.pairs[2 * k] < s->N && sink.pairs[2 * k + 1] >= 0 &&
+               sink.pairs[2 * k + 1] < s->N, SA_ERR_INPUT, "contributor pair (%d, %d) out of range",
+               sink.pairs[2 * k], sink.pairs[2 * k + 1]);
+  *pairs = sink.pairs;
+  *npairs = sink.n;
+  return 0;
+}
+
+/* Contributors on top of bodies and pressure: f_c into bf->fcon, K_c into bf->val. Returns the
+ * first non-zero code (> 0: a domain error). */
+static int eval_contributors(FemSolver *s, AsmBuf *bf, const double *x, int want_K) {
+  memset(bf->fcon, 0, (size_t)s->ndof * sizeof *bf->fcon);
+  FemAsmView v = {s, bf, x, want_K};
+  int first = 0;
+  for (int c = 0; c < s->as.ncontrib; c++) {
+    int rc = s->as.contrib[c].eval(s->as.contrib[c].ctx, &v);
+    if (rc < 0) return SA_ERROR(rc, "contributor '%s' failed: %s", s->as.contrib[c].name ?
+                                s->as.contrib[c].name : "?", sa_error_message());
+    if (rc > 0) sa_error_clear();
+    if (rc && !first) first = rc;
+  }
+  return first;
+}
+
+/* ------------------------------------------------------------------ springs */
+
+/* k (u_a - u_b) on a, the opposite on b; b < 0: tied to the reference position. */
+static int springs_eval(void *ctx, FemAsmView *v) {
+  FemSolver *s = ctx;
+  const double *X = s->m->xyz, *x = v->x;
+  for (int k = 0; k < s->as.nsprings; k++) {
+    int a = s->as.spring_nodes[2 * k], b = s->as.spring_nodes[2 * k + 1];
+    double kk = s->as.spring_k[k], f[3], K[9] = {kk, 0, 0, 0, kk, 0, 0, 0, kk};
+    for (int i = 0; i < 3; i++) {
+      double ua = x[3 * a + i] - X[3 * a + i], ub = b >= 0 ? x[3 * b + i] - X[3 * b + i] : 0.0;
+      f[i] = kk * (ua - ub);
+    }
+    fem_asm_add_force(v, a, f);
+    fem_asm_add_block(v, a, a, K);
+    if (b < 0) continue;
+    double mf[3] = {-f[0], -f[1], -f[2]}, mK[9] = {-kk, 0, 0, 0, -kk, 0, 0, 0, -kk};
+    fem_asm_add_force(v, b, mf);
+    fem_asm_add_block(v, b, b, K);
+    fem_asm_add_block(v, a, b, mK);
+    fem_asm_add_block(v, b, a, mK);
+  }
+  return 0;
+}
+
+static int springs_candidates(void *ctx, const FemMesh *m, FemPairSink *sink) {
+  (void)m;
+  FemSolver *s = ctx;
+  for (int k = 0; k < s->as.nsprings; k++)
+    if (s->as.spring_nodes[2 * k + 1] >= 0)
+      fem_pairs_add(sink, s->as.spring_nodes[2 * k], s->as.spring_nodes[2 * k + 1]);
+  return 0;
+}
+
+int fem_solver_add_spring(FemSolver *s, int a, int b, double k) {
+  SA_REQUIRE(a >= 0 && a < s->N && b >= -1 && b < s->N && a != b, SA_ERR_INPUT,
+             "spring between nodes %d and %d: out of range or the same node", a, b);
+  SA_REQUIRE(k > 0 && isfinite(k), SA_ERR_INPUT, "spring stiffness %g must be > 0", k);
+  FemAssembly *as = &s->as;
+  if (as->nsprings == 0) {
+    FemContributor c = {"springs", springs_candidates, springs_eval, s};
+    SA_CHECK(fem_solver_add_contributor(s, &c));
+  }
+  if (as->nsprings == as->cap_springs) {
+    int cap = as->cap_springs ? 2 * as->cap_springs : 16;
+    int *n = realloc(as->spring_nodes, 2 * (size_t)cap * sizeof *n);
+    SA_REQUIRE(n, SA_ERR_MEMORY, "springs");
+    as->spring_nodes = n;
+    double *kk = realloc(as->spring_k, (size_t)cap * sizeof *kk);
+    SA_REQUIRE(kk, SA_ERR_MEMORY, "springs");
+    as->spring_k = kk;
+    as->cap_springs = cap;
+  }
+  as->spring_nodes[2 * as->nsprings] = a;
+  as->spring_nodes[2 * as->nsprings + 1] = b;
+  as->spring_k[as->nsprings++] = k;
+  return 0;
+}
+
+/* ------------------------------------------------------------------ bodies and pressure */
+
+/* Kernel and scatter of one element (f_int and, if want_K, the tangent slots). */
+static void elem_work(FemSolver *s, AsmBuf *bf, int e, const double *x, int want_K,
+                      double *energy, double *min_detF, int *n_inv, int *n_dom) {
+  const FemMesh *m = s->m;
+  int nen = s->nen, nd = 3 * nen;
+  const int *c = m->conn + (size_t)e * nen;
+  double X[30], xe[30];
+  FemElemOut out;
+  for (int a = 0; a < nen; a++)
+    for (int k = 0; k < 3; k++) {
+      X[3 * a + k] = m->xyz[3 * c[a] + k];
+      xe[3 * a + k] = x[3 * c[a] + k];
+    }
+  int r = m->region ? m->region[e] : 0;
+  int rc = fem_element_tl(m->etype, X, xe, &s->mats[r], s->as.hist_c + s->as.hoff[e],
+                          bf->hist + s->as.hoff[e], want_K, &out);
+  if (rc != 0 || !isfinite(out.energy)) {
+    if (rc == SA_ERR_DOMAIN) (*n_dom)++;
+    else (*n_inv)++;
+    return;
+  }
+  *energy += out.energy;
+  if (out.min_detF < *min_detF) *min_detF = out.min_detF;
+  for (int a = 0; a < nen; a++)
+    for (int k = 0; k < 3; k++) bf->fint[3 * c[a] + k] += out.fe[3 * a + k];
+  if (!want_K) return;
+  const int *ep = s->dm.epair + (size_t)e * nen * nen;
+  for (int a = 0; a < nen; a++)
+    for (int b = 0; b < nen; b++) {
+      const int *sl = s->dm.slot9 + (size_t)ep[a * nen + b] * 9;
+      const double *Kab = out.Ke + (size_t)(3 * a) * nd + 3 * b;
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+          int k = sl[3 * i + j];
+          if (k >= 0) bf->val[k] += Kab[i * nd + j];
+        }
+    }
+}
+
+/* f_int, q, V, g (all dofs) and, if want_K, the tangent values over the free dofs at x with
+ * pressure p. Returns SA_ERR_INVERTED if an element inverted (state otherwise undefined). */
+static int assemble_once(FemSolver *s, AsmBuf *bf, const double *x, double p, int want_K) {
+  double t0 = sa_time_now();
+  memset(bf->fint, 0, (size_t)s->ndof * sizeof *bf->fint);
+  if (want_K) memset(bf->val, 0, (size_t)s->dm.nnz * sizeof *bf->val);
+  double energy = 0.0, min_detF = INFINITY;
+  int n_inv = 0, n_dom = 0, T = s->prm.threads;
+  /* slabs 0..T-1 share no node: one thread each; then the interface group serially */
+#pragma omp parallel for num_threads(T) schedule(static, 1) reduction(+ : energy, n_inv, n_dom) \
+    reduction(min : min_detF)
+  for (int g = 0; g < T; g++)
+    for (int k = s->dm.group_ptr[g]; k < s->dm.group_ptr[g + 1]; k++)
+      elem_work(s, bf, s->dm.group_elem[k], x, want_K, &energy, &min_detF, &n_inv, &n_dom);
+  for (int k = s->dm.group_ptr[T]; k < s->dm.group_ptr[T + 1]; k++)
+    elem_work(s, bf, s->dm.group_elem[k], x, want_K, &energy, &min_detF, &n_inv, &n_dom);
+  if (n_inv || n_dom) sa_error_clear();
+  bf->energy = energy;
+  bf->min_detF = min_detF;
+  bf->n_inv = n_inv;
+  bf->n_domain = n_dom;
+
+  /* pressure faces: load per unit pressure q, its stiffness, enclosed volume and gradient */
+  memset(bf->q, 0, (size_t)s->ndof * sizeof *bf->q);
+  memset(bf->gv, 0, (size_t)s->ndof * sizeof *bf->gv);
+  double V = 0.0;
+  int nfn = s->as.nfn, nfd = 3 * nfn;
+  for (int f = 0; f < s->as.npf; f++) {
+    const int *c = s->as.pf + (size_t)f * nfn;
+    double xf[18], fe[18], Ke[324], dv[18];
+    for (int a = 0; a < nfn; a++)
+      for (int k = 0; k < 3; k++) xf[3 * a + k] = x[3 * c[a] + k];
+    fem_face_pressure(nfn, xf, 1.0, fe, want_K ? Ke : NULL);
+    V += fem_face_volume(nfn, xf, dv, NULL);
+    for (int a = 0; a < nfn; a++)
+      for (int k = 0; k < 3; k++) {
+        bf->q[3 * c[a] + k] += fe[3 * a + k];
+        bf->gv[3 * c[a] + k] += dv[3 * a + k];
+      }
+    if (!want_K || p == 0.0) continue;
+    const int *fp = s->dm.fpair + (size_t)f * nfn * nfn;
+    for (int a = 0; a < nfn; a++)
+      for (int b = 0; b < nfn; b++) {
+        const int *sl = s->dm.slot9 + (size_t)fp[a * nfn + b] * 9;
+        const double *Kab = Ke + (size_t)(3 * a) * nfd + 3 * b;
+        for (int i = 0; i < 3; i++)
+          for (int j = 0; j < 3; j++) {
+            int k = sl[3 * i + j];
+            if (k >= 0) bf->val[k] += p * Kab[i * nfd + j];
+          }
+      }
+  }
+  bf->V = V;
+  int crc = s->as.ncontrib ? eval_contributors(s, bf, x, want_K) : 0;
+  double dt = sa_time_now() - t0;
+  s->st.t_assemble += dt;
+  s->st.n_assemble++;
+  sa_timing_add("fem assemble", dt);
+  if (crc < 0) return crc;
+  if (n_inv) return SA_ERR_INVERTED;
+  if (n_dom || crc > 0) {
+    bf->n_domain += crc > 0;
+    return SA_ERR_DOMAIN;
+  }
+  return 0;
+}
+
+/* Assembly into bf; when a contributor coupled a pair outside the pattern, rebuild the pattern
+ * once and assemble again (the values of the first pass are laid out for the old pattern). */
+int fem_asm_into(FemSolver *s, AsmBuf *bf, const double *x, double p, int want_K) {
+  int rc = assemble_once(s, bf, x, p, want_K);
+  if (s->as.nmissing == 0) return rc;
+  int n = s->as.nmissing;
+  s->as.nmissing = 0;
+  SA_CHECK(fem_dofmap_rebuild(s, n, s->as.missing));
+  if (bf == &s->as.rb) SA_CALLOC(s->as.rb.val, s->dm.nnz);
+  else bf->val = s->as.val;
+  rc = assemble_once(s, bf, x, p, want_K);
+  SA_REQUIRE(s->as.nmissing == 0, SA_ERR_INTERNAL, "node pair missing after a pattern rebuild");
+  return rc;
+}
+
+/* Newton's assembly: its own work arrays and the trial history; sets V and the element
+ * statistics of the solver. */
+int fem_asm_newton(FemSolver *s, const double *x, double p, int want_K) {
+  AsmBuf bf = {s->as.fint, s->as.q, s->as.gv, s->as.fcon, s->as.val, s->as.hist_t, 0, 0, 0, 0, 0};
+  int rc = fem_asm_into(s, &bf, x, p, want_K);
+  if (want_K) s->st.n_assemble_tangent++;
+  s->V = bf.V;
+  s->as.energy = bf.energy;
+  s->as.min_detF = bf.min_detF;
+  s->as.n_inverted = bf.n_inv;
+  s->as.n_domain = bf.n_domain;
+  return rc;
+}
+
+/* Read-back assembly at the converged state: separate arrays, so a getter called between
+ * solves changes nothing a later Newton iteration (or a reused factorisation) depends on. */
+int fem_asm_readback(FemSolver *s, int want_K) {
+  AsmBuf *bf = &s->as.rb;
+  if (want_K && !bf->val) SA_CALLOC(bf->val, s->dm.nnz);
+  int rc = fem_asm_into(s, bf, s->x, s->p, want_K);
+  if (rc) sa_error_clear();
+  SA_REQUIRE(rc >= 0, SA_ERR_NUMERICAL, "inverted elements in the converged state");
+  SA_REQUIRE(rc == 0, SA_ERR_NUMERICAL, "inverted elements in the converged state");
+  return 0;
+}
+
+
+/* History, lumped mass and the assembly targets (setup). */
+int fem_asm_setup(FemSolver *s) {
+  const FemMesh *m = s->m;
+  int ne = m->nelem, nd = s->ndof;
+  FemAssembly *as = &s->as;
+  SA_CALLOC(as->hoff, ne + 1);
+  for (int e = 0; e < ne; e++) {
+    int r = m->region ? m->region[e] : 0;
+    as->hoff[e + 1] = as->hoff[e] + s->nqp * s->mats[r].nhist;
+  }
+  SA_CALLOC(as->hist_c, as->hoff[ne]);
+  SA_CALLOC(as->hist_t, as->hoff[ne]);
+  SA_CALLOC(as->rb.hist, as->hoff[ne]);
+  double **v[] = {&as->fint, &as->q, &as->gv, &as->fdead, &as->rb.fint, &as->rb.q, &as->rb.gv};
+  for (size_t i = 0; i < sizeof v / sizeof *v; i++) SA_CALLOC(*v[i], nd);
+  if (as->ncontrib) {
+    SA_CALLOC(as->fcon, nd);
+    SA_CALLOC(as->rb.fcon, nd);
+  }
+  SA_CALLOC(as->val, s->dm.nnz);
+  SA_CALLOC(as->mlump, s->N);
+  /* lumped mass (gravity, dynamics) */
+  double X[30], mm[10];
+  for (int e = 0; e < ne; e++) {
+    const int *c = m->conn + (size_t)e * s->nen;
+    for (int a = 0; a < s->nen; a++)
+      for (int k = 0; k < 3; k++) X[3 * a + k] = m->xyz[3 * c[a] + k];
+    int r = m->region ? m->region[e] : 0;
+    fem_element_lumped_mass(m->etype, X, s->mats[r].rho, mm);
+    for (int a = 0; a < s->nen; a++) as->mlump[c[a]] += mm[a];
+  }
+  return 0;
+}
+
+void fem_asm_free(FemAssembly *as) {
+  void *p[] = {as->pf, as->hoff, as->hist_c, as->hist_t, as->fint, as->q, as->gv, as->fcon,
+               as->fdead, as->val, as->mlump, as->rb.fint, as->rb.q, as->rb.gv, as->rb.fcon,
+               as->rb.val, as->rb.hist, as->contrib, as->missing, as->spring_nodes, as->spring_k};
+  for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
+}

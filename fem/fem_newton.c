@@ -1,0 +1,343 @@
+/* fem_newton.c - one load substep by Newton-Raphson (docs/fem.md "Newton-Raphson").
+ *
+ *   R(u, p) = f_int(u) + f_c(u) - f_dead - p q(u)          (fem_assemble.c)
+ *   K du = -R                                               load control
+ *   K a = -R,  K b = q,  dp = -(c + g.a)/(g.b),  du = a + dp b,  c = V(u) - V_goal,  g = dV/du
+ *                                                           volume control (bordered system)
+ * Dynamic substeps add the HHT inertia terms (fem_dynamics.c).
+ *
+ * Pieces: the predictor and the factor-reuse plan (decided before the tangent is assembled:
+ * a reused direction assembles no tangent and solves with the values its factors came from),
+ * lazy backtracking on domain errors (inverted element, a law's failed return mapping, the
+ * user's domain hook), NaN or merit blow-up, the direction (plain or bordered), and the
+ * stopping tests, each ending with a FemNewtonReason (fem.h) and its message. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fem_solver_priv.h"
+#include "sa_error.h"
+#include "sa_log.h"
+
+const char *fem_newton_reason_string(FemNewtonReason r) {
+  switch (r) {
+  case FEM_NEWTON_ITERATING: return "iterating";
+  case FEM_CONVERGED_RESIDUAL: return "converged: residual";
+  case FEM_CONVERGED_UPDATE: return "converged: update";
+  case FEM_DIVERGED_MAX_ITER: return "diverged: iteration limit";
+  case FEM_DIVERGED_STALLED: return "diverged: stalled";
+  case FEM_DIVERGED_GROWTH: return "diverged: residual growth";
+  case FEM_DIVERGED_DOMAIN: return "diverged: outside the domain (inverted element, law, hook)";
+  case FEM_DIVERGED_NAN: return "diverged: not a number";
+  case FEM_DIVERGED_LINEAR_SOLVE: return "diverged: linear solve";
+  case FEM_DIVERGED_BORDERED: return "diverged: bordered system singular";
+  }
+  return "unknown";
+}
+
+void fem_solver_set_domain_check(FemSolver *s, FemDomainCheck fn, void *ctx) {
+  s->nw.domain_check = fn;
+  s->nw.domain_ctx = ctx;
+}
+
+/* Residual on free dofs at the last assembled state; returns ||R||, and the force scale fref
+ * (max of the internal-force norm incl. reactions and the external-force norm). */
+static double residual(FemSolver *s, const StepKind *sk, double *fref) {
+  if (sk->dynamic) return fem_dyn_residual(s, sk, fref);
+  const double *fcon = s->as.ncontrib ? s->as.fcon : NULL;
+  double fe2 = 0, fi2 = 0, r2 = 0;
+  for (int d = 0; d < s->ndof; d++) {
+    double fext = s->as.fdead[d] + s->p * s->as.q[d];
+    double fi = s->as.fint[d];
+    if (fcon) fi += fcon[d];
+    double r = fi - fext;
+    fi2 += fi * fi;
+    int k = s->dm.eq[d];
+    if (k < 0) continue;
+    fe2 += fext * fext;
+    s->nw.R[k] = r;
+    r2 += r * r;
+  }
+  *fref = fmax(sqrt(fi2), sqrt(fe2));
+  return sqrt(r2);
+}
+
+static int factorize(FemSolver *s, const StepKind *sk) {
+  if (sk->dynamic) fem_dyn_effective_tangent(s, sk);
+  /* CHOLMOD at every iteration: a tangent that is indefinite at the first iteration of a
+   * substep (the load increment applied to the converged state) is usually positive definite
+   * again near the new equilibrium, and a failed CHOLMOD attempt costs at most one Cholesky
+   * (quick return at the first non-positive pivot), ~6x less than the LU it would replace. */
+  int sym = s->prm.linsolver == FEM_LINSOLVER_AUTO;
+  if (sym) {
+    double asym = fem_linsolve_asymmetry(s->dm.lin, s->as.val);
+    s->st.asymmetry = asym;
+    if (asym > s->prm.sym_tol) {
+      sym = 0;
+      sa_log(s->nw.last_sym ? SA_LOG_INFO : SA_LOG_DEBUG, "fem",
+             "tangent not symmetric (max|K-K^T|/max|K| = %.2e > %.0e): UMFPACK LU", asym,
+             s->prm.sym_tol);
+    }
+  }
+  double t0 = sa_time_now();
+  int rc = fem_linsolve_factorize(s->dm.lin, s->as.val, sym);
+  s->st.t_factor += sa_time_now() - t0;
+  s->st.n_factor++;
+  FemLinInfo li;
+  fem_linsolve_info(s->dm.lin, &li);
+  if (li.not_pd) {
+    sa_log(s->nw.saw_not_pd ? SA_LOG_DEBUG : SA_LOG_INFO, "fem",
+           "tangent not positive definite (CHOLMOD): UMFPACK LU for this iteration");
+    s->nw.saw_not_pd = s->ct.fail_not_pd = 1;
+  }
+  if (rc == 0 && li.kind == FEM_LIN_UMFPACK) {
+    s->nw.lu_substep++;
+    s->ct.rep.lu_fallbacks++;
+    s->st.n_lu++;
+  } else if (rc == 0) {
+    s->st.n_chol++;
+  }
+  s->nw.last_sym = (rc == 0 && li.kind == FEM_LIN_CHOLMOD);
+  return rc;
+}
+
+static int linsolve(FemSolver *s, const double *b, double *x) {
+  double t0 = sa_time_now();
+  int rc = fem_linsolve_solve(s->dm.lin, b, x);
+  s->st.t_solve += sa_time_now() - t0;
+  s->st.n_solve++;
+  return rc;
+}
+
+/* Iteration state of one substep. */
+typedef struct {
+  int vol, it, ls, stall, nfresh, have_fact, fresh_last, reuse;
+  double r_prev, r_first, merit_prev, step_len, dp, gb, du_norm, qnorm, p_pred;
+} Iter;
+
+/* Assembly of the trial state (residual only when the plan is to reuse factors), the domain
+ * hook, residual and merit. Returns the assembly code (0, SA_ERR_INVERTED, SA_ERR_DOMAIN, or
+ * < 0 fatal). */
+static int evaluate(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, double *rnorm,
+                    double *fref, double *c, double *merit) {
+  int rc = fem_asm_newton(s, s->x, t->it == 0 ? t->p_pred : s->p, !plan_reuse);
+  if (rc == 0 && s->nw.domain_check && s->nw.domain_check(s, s->x, s->nw.domain_ctx)) {
+    sa_error_clear();
+    rc = SA_ERR_DOMAIN;
+  }
+  *fref = 0, *rnorm = INFINITY, *c = 0, *merit = INFINITY;
+  if (rc == 0) {
+    *rnorm = residual(s, sk, fref);
+    if (t->vol) *c = s->V - s->ct.V_goal;
+    /* merit: |R| plus, under volume control, the constraint violation in force units
+     * (|q| |c| / (g.b): the pressure error that c implies, times the load per pressure) */
+    *merit = *rnorm;
+    if (t->vol && t->gb != 0.0) *merit += t->qnorm * fabs(*c) / fabs(t->gb);
+  }
+  return rc;
+}
+
+/* Stopping tests at an accepted iterate: > 0 converged, < 0 diverged, 0 go on. */
+static FemNewtonReason stop_test(FemSolver *s, Iter *t, double rnorm, double fref, double c) {
+  if (t->it <= 1) t->r_first = fmax(t->r_first, rnorm); /* it 0 may be ~0 under volume control */
+  /* converged: residual below tolerance, or (round-off floor of a stiff, nearly
+   * incompressible problem) the last update negligible against the displacement */
+  int vol_ok = !t->vol || fabs(c) <= s->prm.vtol * s->V_ref;
+  if (rnorm <= s->prm.rtol * fref + s->prm.atol && vol_ok) return FEM_CONVERGED_RESIDUAL;
+  if (t->it > 0 && t->ls == 0 && t->du_norm <= s->prm.utol * fem_nrm2(s->u, s->ndof) && vol_ok)
+    return FEM_CONVERGED_UPDATE;
+  if (t->nfresh >= s->prm.max_iter || t->it >= 4 * s->prm.max_iter) {
+    SA_ERROR(SA_ERR_NOT_CONVERGED, "no convergence in %d iterations (|R| %.3e, %.3e x "
+             "tolerance)", t->it, rnorm, rnorm / (s->prm.rtol * fref + s->prm.atol));
+    return FEM_DIVERGED_MAX_ITER;
+  }
+  t->stall = (t->it > 1 && rnorm > 0.5 * t->r_prev) ? t->stall + 1 : 0;
+  if (t->stall >= s->prm.max_stall) {
+    SA_ERROR(SA_ERR_NOT_CONVERGED, "Newton stalled (|R| %.3e not halved in %d iterations)",
+             rnorm, t->stall);
+    return FEM_DIVERGED_STALLED;
+  }
+  if (t->it >= 3 && rnorm > 1e6 * t->r_first) {
+    SA_ERROR(SA_ERR_NOT_CONVERGED, "Newton diverging (|R| grew from %.3e to %.3e)", t->r_first,
+             rnorm);
+    return FEM_DIVERGED_GROWTH;
+  }
+  return FEM_NEWTON_ITERATING;
+}
+
+/* Newton direction du (and dp under volume control) with fresh or reused factors, then the
+ * full step. Returns 0, or the failure code with *why set. */
+static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, double rnorm,
+                     double rate, double c, double merit, FemNewtonReason *why) {
+  const int nf = s->dm.nfree;
+  int use_old = t->it == 0 ? t->reuse
+                           : (s->prm.reuse_rate > 0 && t->have_fact && t->ls == 0 &&
+                              (t->fresh_last || rate <= s->prm.reuse_rate));
+  int rc = 0;
+  if (!use_old && plan_reuse) { /* tentative reuse rejected: the tangent at this iterate */
+    rc = fem_asm_newton(s, s->x, s->p, 1);
+    if (rc) {
+      *why = FEM_DIVERGED_DOMAIN;
+      if (rc < 0) return sa_error_push(rc, __func__, __FILE__, __LINE__);
+      return SA_ERROR(SA_ERR_INVERTED, "%d element(s) inverted at iteration %d",
+                      s->as.n_inverted, t->it);
+    }
+  }
+  rc = use_old ? 0 : factorize(s, sk);
+  if (!use_old) t->nfresh++;
+  else s->st.n_reuse++;
+  t->fresh_last = !use_old;
+  t->have_fact = rc == 0;
+  if (rc) {
+    *why = FEM_DIVERGED_LINEAR_SOLVE;
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  for (int k = 0; k < nf; k++) s->nw.rhs[k] = -s->nw.R[k];
+  SA_CHECK(linsolve(s, s->nw.rhs, s->nw.da));
+  if (t->vol) {
+    for (int d = 0; d < s->ndof; d++)
+      if (s->dm.eq[d] >= 0) {
+        s->nw.qf[s->dm.eq[d]] = s->as.q[d];
+        s->nw.gf[s->dm.eq[d]] = s->as.gv[d];
+      }
+    SA_CHECK(linsolve(s, s->nw.qf, s->nw.db));
+    t->gb = fem_dot(s->nw.gf, s->nw.db, nf);
+    if (t->gb == 0.0 || !isfinite(t->gb)) {
+      *why = FEM_DIVERGED_BORDERED;
+      return SA_ERROR(SA_ERR_NOT_CONVERGED, "volume control: dV/dp = 0 (bordered system "
+                      "singular)");
+    }
+    t->dp = -(c + fem_dot(s->nw.gf, s->nw.da, nf)) / t->gb;
+    t->qnorm = fem_nrm2(s->nw.qf, nf);
+    merit = rnorm + t->qnorm * fabs(c) / fabs(t->gb);
+    for (int k = 0; k < nf; k++) s->nw.du[k] = s->nw.da[k] + t->dp * s->nw.db[k];
+  } else {
+    t->dp = 0.0;
+    memcpy(s->nw.du, s->nw.da, (size_t)nf * sizeof *s->nw.du);
+  }
+  t->du_norm = fem_nrm2(s->nw.du, nf);
+  memcpy(s->nw.u_it, s->u, (size_t)s->ndof * sizeof *s->u);
+  s->nw.p_it = s->p;
+  t->merit_prev = merit;
+  t->r_prev = rnorm;
+  t->ls = 0;
+  t->step_len = 1.0;
+  for (int d = 0; d < s->ndof; d++)
+    if (s->dm.eq[d] >= 0) s->u[d] += s->nw.du[s->dm.eq[d]];
+  s->p += t->dp;
+  fem_set_x(s);
+  t->it++;
+  return 0;
+}
+
+/* One substep: Newton from the current u (the predictor is applied by the caller) to
+ * equilibrium with the loads already applied. Lazy backtracking: a full step is taken; if the
+ * next assembly finds a domain error, a NaN or a larger merit (residual norm, plus the
+ * volume-constraint violation in force units), the step is halved (up to 6 times).
+ * Returns 0, > 0 (recoverable: caller cuts the increment) or < 0 (fatal); s->nw.reason says
+ * why it stopped. */
+int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
+  Iter t = {.vol = s->ct.control == FEM_CONTROL_VOLUME, .r_prev = -1, .r_first = -1,
+            .merit_prev = INFINITY, .step_len = 1.0};
+  *iters = 0;
+  s->nw.reason = FEM_NEWTON_ITERATING;
+  /* Predictor (it 0), FemPredictor: NEW_LOAD (default) factorises the converged state with the
+   * new pressure's load stiffness, K(u_n, p_n+1); EQUILIBRIUM uses K(u_n, p_n), the
+   * equilibrium path's tangent (on the actuator K(u_n, p_n+1) is indefinite above ~4 kPa of
+   * increment: no stress yet carries the extra pressure); REUSE takes the factors of the last
+   * iteration of the previous substep (no factorisation: meant for many small coupled
+   * solves). Measured on the default scene (docs/fem.md): NEW_LOAD needs the fewest
+   * factorisations and LU fallbacks, although its first tangent is often indefinite. */
+  t.reuse = s->prm.predictor == FEM_PREDICT_REUSE && s->nw.fact_converged &&
+            s->nw.fact_dynamic == sk->dynamic &&
+            (!sk->dynamic || (s->nw.fact_dt == sk->dt && s->nw.fact_alpha == sk->alpha));
+  t.p_pred = s->prm.predictor == FEM_PREDICT_NEW_LOAD ? s->p : s->ct.p_last;
+  /* reuse_rate > 0 (modified Newton): a direction from fresh factors is followed by one that
+   * reuses them (assembly + triangular solves): for a nearly incompressible solid a full
+   * Newton step leaves a volumetric residual ~ kappa |grad du|^2 (|R| jumps x10-100) that one
+   * more solve with the same factors mostly removes. Reuse goes on while |R| falls by
+   * reuse_rate per iteration, else fresh factors. Off by default: on the default scene it
+   * saved a third of the factorisations but not time (docs/fem.md). */
+  t.have_fact = t.reuse;
+  for (;;) {
+    if (sk->dynamic) fem_dyn_kinematics(s, sk);
+    /* Reuse is planned before the assembly, so a direction from reused factors builds no
+     * tangent and the values the factors were computed from (incl. the dynamic mass term) stay
+     * in val for UMFPACK's iterative refinement. Certain: the REUSE predictor at it 0, and the
+     * iteration after fresh factors; tentative: continued reuse, confirmed by the rate (if
+     * rejected, direction() assembles the tangent then). */
+    int plan_reuse = t.it == 0 ? t.reuse : (s->prm.reuse_rate > 0 && t.have_fact && t.ls == 0);
+    double fref, rnorm, c, merit;
+    int rc = evaluate(s, sk, &t, plan_reuse, &rnorm, &fref, &c, &merit);
+    if (rc < 0) {
+      *iters = t.it;
+      return sa_error_push(rc, __func__, __FILE__, __LINE__);
+    }
+    int bad = rc != 0 || !isfinite(rnorm);
+    /* Backtrack on domain errors / non-finite residuals, and on a residual blow-up by more
+     * than ls_growth. Not on any increase: for a nearly incompressible solid the full Newton
+     * step changes the volume to second order and kappa times that makes the residual norm
+     * jump although the next iterations converge quadratically (docs/fem.md). */
+    if (t.it > 0 && s->prm.line_search && t.ls < 6 &&
+        (bad || merit > s->prm.ls_growth * t.merit_prev)) {
+      t.step_len *= 0.5;
+      t.ls++;
+      for (int d = 0; d < s->ndof; d++)
+        if (s->dm.eq[d] >= 0) s->u[d] = s->nw.u_it[d] + t.step_len * s->nw.du[s->dm.eq[d]];
+      s->p = s->nw.p_it + t.step_len * t.dp;
+      fem_set_x(s);
+      continue;
+    }
+    if (bad) {
+      *iters = t.it;
+      if (rc == SA_ERR_INVERTED) {
+        s->nw.reason = FEM_DIVERGED_DOMAIN;
+        return SA_ERROR(SA_ERR_INVERTED, "%d element(s) inverted at iteration %d",
+                        s->as.n_inverted, t.it);
+      }
+      if (rc == SA_ERR_DOMAIN) {
+        s->nw.reason = FEM_DIVERGED_DOMAIN;
+        return SA_ERROR(SA_ERR_DOMAIN, "state outside the model's domain at iteration %d (%d "
+                        "law evaluation(s) failed%s)", t.it, s->as.n_domain,
+                        s->nw.domain_check ? ", or the domain hook refused it" : "");
+      }
+      s->nw.reason = FEM_DIVERGED_NAN;
+      return SA_ERROR(SA_ERR_NAN, "residual is not finite at iteration %d", t.it);
+    }
+    double rate = t.r_prev > 0 ? rnorm / t.r_prev : 0.0;
+    const char *lsn = t.ls ? "  (line search)" : "";
+    const char *ren = t.it > 0 && !t.fresh_last ? "  (reused factors)" : "";
+    if (t.vol)
+      sa_log(SA_LOG_DEBUG, "fem", "step %d it %2d |R| %.3e |du| %.3e rate %.3f  p %.6g dV %.2e%s%s",
+             step, t.it, rnorm, t.du_norm, rate, s->p, c, lsn, ren);
+    else
+      sa_log(SA_LOG_DEBUG, "fem", "step %d it %2d |R| %.3e |du| %.3e rate %.3f%s%s", step, t.it,
+             rnorm, t.du_norm, rate, lsn, ren);
+    FemNewtonReason why = stop_test(s, &t, rnorm, fref, c);
+    if (why != FEM_NEWTON_ITERATING) {
+      *iters = t.it;
+      s->nw.reason = why;
+      return why > 0 ? 0 : SA_ERR_NOT_CONVERGED;
+    }
+    rc = direction(s, sk, &t, plan_reuse, rnorm, rate, c, merit, &why);
+    if (rc) {
+      *iters = t.it;
+      s->nw.reason = why;
+      return rc;
+    }
+  }
+}
+
+int fem_newton_alloc(FemSolver *s) {
+  int nf = s->dm.nfree;
+  double **v[] = {&s->nw.R, &s->nw.da, &s->nw.db, &s->nw.du, &s->nw.rhs, &s->nw.qf, &s->nw.gf};
+  for (size_t i = 0; i < sizeof v / sizeof *v; i++) SA_CALLOC(*v[i], nf);
+  SA_CALLOC(s->nw.u_it, s->ndof);
+  return 0;
+}
+
+void fem_newton_free(FemNewton *nw) {
+  void *p[] = {nw->R, nw->da, nw->db, nw->du, nw->rhs, nw->qf, nw->gf, nw->u_it};
+  for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
+}
