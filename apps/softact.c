@@ -20,6 +20,9 @@
 #ifdef SOFTACT_HAVE_FEM
 #include "fem.h"
 #endif
+#ifdef SOFTACT_HAVE_DEM
+#include "dem_module.h"
+#endif
 
 #ifndef SOFTACT_VERSION
 #define SOFTACT_VERSION "unknown"
@@ -31,6 +34,9 @@ static const SaModule *const modules[] = {
 #endif
 #ifdef SOFTACT_HAVE_FEM
     &fem_module,
+#endif
+#ifdef SOFTACT_HAVE_DEM
+    &dem_module,
 #endif
     NULL};
 
@@ -53,7 +59,15 @@ static void usage(FILE *f) {
           "results computed so far are kept), 4 I/O, memory or library failure.\n");
 }
 
-/* Which module's scene the case describes: exactly one trigger section must be present. */
+/* Is table t among the first n of list (tables shared by two scenes are listed once)? */
+static int table_seen(const SaParamTable *const *list, int n, const SaParamTable *t) {
+  for (int i = 0; i < n; i++)
+    if (list[i] == t) return 1;
+  return 0;
+}
+
+/* Which module's scene the case describes: exactly one trigger section must be present, except
+ * that a module extending another (FEM-DEM reads the actuator's [mesh]) wins over it. */
 static int select_module(const SaCase *c, const SaModule **out) {
   *out = NULL;
   char names[256] = "";
@@ -61,9 +75,15 @@ static int select_module(const SaCase *c, const SaModule **out) {
     size_t k = strlen(names);
     snprintf(names + k, sizeof names - k, "%s[%s]", i ? " or " : "", modules[i]->trigger);
     if (!sa_case_has_section(c, modules[i]->trigger)) continue;
+    const SaModule *m = modules[i];
+    if (*out && m->extends && !strcmp(m->extends, (*out)->trigger)) {
+      *out = m; /* m extends the one found so far */
+      continue;
+    }
+    if (*out && (*out)->extends && !strcmp((*out)->extends, m->trigger)) continue;
     SA_REQUIRE(!*out, SA_ERR_INPUT, "%s: the case has both [%s] and [%s]; a case file describes one scene",
-               sa_case_path(c), (*out)->trigger, modules[i]->trigger);
-    *out = modules[i];
+               sa_case_path(c), (*out)->trigger, m->trigger);
+    *out = m;
   }
   SA_REQUIRE(*out, SA_ERR_INPUT, "%s: no scene section found: a case needs %s", sa_case_path(c),
              names[0] ? names : "a module (none built)");
@@ -142,7 +162,8 @@ static int run_case(const Args *a) {
     int na = 0;
     all[na++] = &sa_run_table;
     for (int i = 0; modules[i]; i++)
-      for (int t = 0; t < modules[i]->ntables && na < 128; t++) all[na++] = modules[i]->tables[t];
+      for (int t = 0; t < modules[i]->ntables && na < 128; t++)
+        if (!table_seen(all, na, modules[i]->tables[t])) all[na++] = modules[i]->tables[t];
     rc = sa_case_check_known(c, all, na);
   }
   if (!rc) rc = select_module(c, &m);
@@ -237,9 +258,16 @@ int main(int argc, char **argv) {
     }
   }
   if (argc >= 2 && !strcmp(argv[1], "keys")) {
+    const SaParamTable *seen[128];
+    int ns = 0;
     sa_params_write_markdown(&sa_run_table, stdout);
     for (int i = 0; modules[i]; i++)
-      for (int t = 0; t < modules[i]->ntables; t++) sa_params_write_markdown(modules[i]->tables[t], stdout);
+      for (int t = 0; t < modules[i]->ntables && ns < 128; t++) {
+        const SaParamTable *tb = modules[i]->tables[t];
+        if (table_seen(seen, ns, tb)) continue; /* shared by two scenes: listed once */
+        seen[ns++] = tb;
+        sa_params_write_markdown(tb, stdout);
+      }
     return 0;
   }
   if (argc < 2) {

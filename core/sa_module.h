@@ -19,6 +19,9 @@
 typedef struct {
   const char *name;                  /* "hmsa", "fem" */
   const char *trigger;               /* section that selects this module's scene */
+  const char *extends;               /* trigger of a module whose sections this scene also
+                                      * reads (the FEM-DEM scene reads the actuator's [mesh]):
+                                      * when both triggers are present, this module is chosen */
   const char *help;                  /* one line for --help */
   const SaParamTable *const *tables; /* every section the module owns */
   int ntables;

@@ -1,0 +1,754 @@
+/* dem_granular.c - the FEM-DEM granular bending run (the plugin's entry point).
+ *
+ * Phases (docs/dem.md):
+ *  1. FEM model of the actuator (fem_actuator.h), clamped, gravity; the cavity wall is a
+ *     coupling surface (fem_coupling.h) and also the "pressure" surface at zero pressure, only
+ *     so that the solver reports the cavity volume.
+ *  2. LIGGGHTS: grains, the cavity wall mesh (held rigid while pouring), the rigid barrel above
+ *     the cavity and the piston disc. Grains are poured in rounds, settled, and those above
+ *     fill_height removed.
+ *  3. The piston is lowered until its force reaches contact_force: displacement zero.
+ *  4. Coupling steps: the piston advances by `interval`; during the step the DEM sees the wall
+ *     move linearly from its previous to its current FEM position (velocity = change / step
+ *     time); the wall forces averaged over the step, under-relaxed with factor `relaxation`,
+ *     are the FEM's nodal loads; the FEM solves (reusing factors); the new wall position is
+ *     used during the next step. A few steps with the piston at rest first load the wall with
+ *     the settled bed.
+ * Every step checks lost grains, NaN, the force balance and (every check_every steps) grains
+ * outside the bore; the largest overlap and the implied packing are reported and bounded. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dem.h"
+#include "dem_checks.h"
+#include "dem_scene.h"
+#include "fem_coupling.h"
+#include "sa_csv.h"
+#include "sa_error.h"
+#include "sa_log.h"
+#include "sa_output.h"
+#include "sa_plot.h"
+#include "sa_vtk.h"
+
+#define R_BORE 6e-3 /* cavity and barrel radius of meshes/actuator.geo */
+#define G_ACC 9.81
+#define N_PRELOAD 5 /* coupling steps with the piston at rest before the stroke */
+
+enum { M_WALL = 0, M_BARREL = 1, M_PISTON = 2, N_MESH = 3 };
+
+typedef struct {
+  const DemScene *sc;
+  const SaRun *run;
+  /* FEM */
+  FemMesh *m;
+  FemMaterial *mats;
+  FemSolver *s;
+  FemCouplingSurface *cs;
+  int nv, nt;                 /* wall vertices, triangles */
+  double *xw_prev, *xw_cur;   /* wall vertex positions: start and end of the motion */
+  double *xw, *vw;            /* interpolated positions and velocities handed to LIGGGHTS */
+  double *f_tri, *f_sum, *f_node, *f_app; /* wall forces: per triangle, summed, nodal, applied */
+  double V0;
+  /* DEM */
+  DemBridge *b;
+  int mesh_id[N_MESH], mesh_nt[N_MESH], mesh_nv[N_MESH];
+  double *mesh_x[N_MESH], *mesh_f[N_MESH]; /* barrel/piston vertices; per-triangle forces */
+  double *piston_v;                        /* piston vertex velocities */
+  double dt, d, m_grain, z_top, z_piston, piston_r;
+  int n_grains;
+  double *px, *pv, *pf, *pr; /* grain read-back */
+  DemBore *bore;
+  /* coupling step averages */
+  double F_mesh[N_MESH][3];
+  double angle, piston_force, overlap, balance, phi, phi0, V_bed0, wall_fz, barrel_fz;
+  int newton;
+  /* outputs */
+  SaCsv *csv;
+  SaVtkSeries *vtk_fem, *vtk_grains;
+  int *cell_types, *cell_off;
+  double *sigma, *vm, *reg;
+  int vtk_index;
+  double t_dem, t_exchange, t_fem, t_out, t_checks;
+} Run;
+
+/* ------------------------------------------------------------------ FEM side */
+
+static int setup_fem(Run *g) {
+  const DemScene *sc = g->sc;
+  const DemCouplingCase *cc = &sc->coupling;
+  SA_CHECK(fem_actuator_mesh(&sc->act, &g->m));
+  const char *surfs[] = {cc->wall_surface, cc->fixed_surface, cc->tip_surface};
+  SA_CHECK(fem_mesh_require(g->m, 0, NULL, 3, surfs));
+  g->mats = calloc((size_t)(g->m->nregions > 0 ? g->m->nregions : 1), sizeof *g->mats);
+  SA_REQUIRE(g->mats, SA_ERR_MEMORY, "materials");
+  SA_CHECK(fem_actuator_materials(&sc->act, g->m, g->mats));
+  FemSolverParams prm = fem_actuator_solver_params(&sc->act, g->run->threads);
+  SA_CHECK(fem_solver_create(g->m, g->mats, &prm, &g->s));
+  SA_CHECK(fem_solver_fix_surface(g->s, cc->fixed_surface, FEM_XYZ));
+  SA_CHECK(fem_solver_add_pressure_surface(g->s, cc->wall_surface)); /* volume only, p = 0 */
+  if (cc->gravity) SA_CHECK(fem_solver_set_gravity(g->s, (const double[3]){0, 0, -G_ACC}));
+  SA_CHECK(fem_solver_setup(g->s));
+  const char *wall[] = {cc->wall_surface};
+  SA_CHECK(fem_coupling_surface_create(g->m, 1, wall, &g->cs));
+  g->nv = fem_coupling_surface_nverts(g->cs);
+  g->nt = fem_coupling_surface_ntri(g->cs);
+  size_t v3 = 3 * (size_t)g->nv, t3 = 3 * (size_t)g->nt;
+  g->xw_prev = malloc(sizeof(double) * v3), g->xw_cur = malloc(sizeof(double) * v3);
+  g->xw = malloc(sizeof(double) * v3), g->vw = calloc(v3, sizeof(double));
+  g->f_tri = malloc(sizeof(double) * t3), g->f_sum = calloc(t3, sizeof(double));
+  g->f_node = calloc(v3, sizeof(double)), g->f_app = calloc(v3, sizeof(double));
+  SA_REQUIRE(g->xw_prev && g->xw_cur && g->xw && g->vw && g->f_tri && g->f_sum && g->f_node &&
+             g->f_app, SA_ERR_MEMORY, "coupling buffers");
+  fem_coupling_surface_gather(g->cs, g->m->xyz, g->xw_cur);
+  memcpy(g->xw_prev, g->xw_cur, sizeof(double) * v3);
+  memcpy(g->xw, g->xw_cur, sizeof(double) * v3);
+  g->V0 = fem_solver_cavity_volume(g->s);
+  SA_CHECK(dem_bore_create(g->nv, fem_coupling_surface_triangles(g->cs), g->nt, R_BORE, &g->bore));
+  sa_log(SA_LOG_INFO, "dem", "FEM: %d nodes, %d elements; wall: %d vertices, %d triangles; "
+         "cavity volume %.1f mm^3", g->m->nnodes, g->m->nelem, g->nv, g->nt, g->V0 * 1e9);
+  return 0;
+}
+
+/* ------------------------------------------------------------------ rigid meshes */
+
+/* Barrel: a tube of radius R_BORE from z = 0 to z_top, nth segments around, rings every dz. */
+static int make_barrel(Run *g, double z_top, int *nv, double **xyz, int *nt, int **tri) {
+  int nth = 48, nz = (int)ceil(z_top / 2e-3);
+  if (nz < 1) nz = 1;
+  *nv = nth * (nz + 1), *nt = 2 * nth * nz;
+  *xyz = malloc(sizeof(double) * 3 * (size_t)*nv);
+  *tri = malloc(sizeof(int) * 3 * (size_t)*nt);
+  SA_REQUIRE(*xyz && *tri, SA_ERR_MEMORY, "barrel mesh");
+  for (int k = 0; k <= nz; k++)
+    for (int j = 0; j < nth; j++) {
+      double th = 2 * M_PI * j / nth, *p = *xyz + 3 * (k * nth + j);
+      p[0] = R_BORE * cos(th), p[1] = R_BORE * sin(th), p[2] = z_top * k / nz;
+    }
+  int t = 0;
+  for (int k = 0; k < nz; k++)
+    for (int j = 0; j < nth; j++) {
+      int a = k * nth + j, b = k * nth + (j + 1) % nth, c = a + nth, d = b + nth;
+      int *q = *tri + 3 * t;
+      q[0] = a, q[1] = c, q[2] = b, q[3] = b, q[4] = c, q[5] = d;
+      t += 2;
+    }
+  (void)g;
+  return 0;
+}
+
+/* Piston: a disc of radius r at height z: centre + nth rim vertices, a fan of triangles. */
+static void piston_vertices(int nth, double r, double z, double *xyz) {
+  xyz[0] = xyz[1] = 0, xyz[2] = z;
+  for (int j = 0; j < nth; j++) {
+    double th = 2 * M_PI * j / nth;
+    xyz[3 * (j + 1)] = r * cos(th), xyz[3 * (j + 1) + 1] = r * sin(th), xyz[3 * (j + 1) + 2] = z;
+  }
+}
+
+/* ------------------------------------------------------------------ DEM side */
+
+static int setup_dem(Run *g) {
+  const DemScene *sc = g->sc;
+  const DemGrainCase *gr = &sc->grains;
+  g->d = gr->diameter;
+  g->m_grain = gr->density * M_PI * pow(g->d, 3) / 6;
+  double E = gr->young / gr->softening;
+  double t_r = dem_scene_rayleigh_dt(g->d, gr->density, E, gr->poisson);
+  g->dt = sc->dem.dt_fraction * t_r;
+  DemParams p = {
+      .diameter = g->d, .density = gr->density, .young = E, .poisson = gr->poisson,
+      .restitution = gr->restitution, .friction = gr->friction,
+      .friction_wall = gr->friction_wall, .friction_piston = gr->friction_piston,
+      .rolling_friction = gr->rolling_friction, .wall_young = E, .wall_poisson = gr->poisson,
+      .dt = g->dt, .dt_safety = 0.35, .gravity = {0, 0, sc->coupling.gravity ? -G_ACC : 0},
+      .skin = sc->dem.skin * g->d, .seed = sc->dem.seed};
+  /* the pour column: the bed volume at a loose 0.3 packing above the barrel top */
+  double V_bore = M_PI * R_BORE * R_BORE * (80e-3 + gr->fill_height);
+  g->n_grains = (int)ceil(1.04 * gr->packing_guess * V_bore / (M_PI * pow(g->d, 3) / 6));
+  g->z_top = sc->piston.barrel_length + 0.06;
+  /* room for the actuator bending toward -x and up (tip ~84 mm from the clamp) */
+  double lo[3] = {-0.12, -0.04, -0.14}, hi[3] = {0.04, 0.04, g->z_top + 4 * g->d};
+  memcpy(p.box_lo, lo, sizeof lo);
+  memcpy(p.box_hi, hi, sizeof hi);
+  char log[SA_STR_MAX];
+  SA_CHECK(sa_run_path(g->run, "liggghts.log", log));
+  SA_CHECK(dem_bridge_create(log, &g->b));
+  SA_CHECK(dem_bridge_setup(g->b, &p));
+  sa_log(SA_LOG_INFO, "dem", "grains: d = %.3g mm, E = %.3g MPa (physical / %g), dt = %.3g us "
+         "(%.2f x Rayleigh %.3g us); pouring %d grains", g->d * 1e3, E / 1e6, gr->softening,
+         g->dt * 1e6, sc->dem.dt_fraction, t_r * 1e6, g->n_grains);
+  /* wall (the FEM coupling surface at its reference position) */
+  SA_CHECK(dem_bridge_add_mesh(g->b, "wall", g->nv, g->xw_cur, g->nt,
+                               fem_coupling_surface_triangles(g->cs), DEM_WALL_SILICONE,
+                               &g->mesh_id[M_WALL]));
+  g->mesh_nt[M_WALL] = g->nt, g->mesh_nv[M_WALL] = g->nv;
+  /* barrel, tall enough for the pour (grains are above barrel_length only while pouring) */
+  int bnv, bnt, *btri;
+  double *bx;
+  SA_CHECK(make_barrel(g, g->z_top, &bnv, &bx, &bnt, &btri));
+  int rc = dem_bridge_add_mesh(g->b, "barrel", bnv, bx, bnt, btri, DEM_WALL_STEEL,
+                               &g->mesh_id[M_BARREL]);
+  free(btri);
+  g->mesh_x[M_BARREL] = bx, g->mesh_nt[M_BARREL] = bnt, g->mesh_nv[M_BARREL] = bnv;
+  SA_CHECK(rc);
+  /* piston above the pour column */
+  int nth = 36;
+  g->piston_r = R_BORE - 0.15 * g->d;
+  g->z_piston = g->z_top + 2 * g->d;
+  g->mesh_nv[M_PISTON] = nth + 1, g->mesh_nt[M_PISTON] = nth;
+  g->mesh_x[M_PISTON] = malloc(sizeof(double) * 3 * (nth + 1));
+  g->piston_v = malloc(sizeof(double) * 3 * (nth + 1));
+  int *ptri = malloc(sizeof(int) * 3 * nth);
+  SA_REQUIRE(g->mesh_x[M_PISTON] && g->piston_v && ptri, SA_ERR_MEMORY, "piston mesh");
+  piston_vertices(nth, g->piston_r, g->z_piston, g->mesh_x[M_PISTON]);
+  for (int j = 0; j < nth; j++) ptri[3 * j] = 0, ptri[3 * j + 1] = 1 + j, ptri[3 * j + 2] = 1 + (j + 1) % nth;
+  rc = dem_bridge_add_mesh(g->b, "piston", nth + 1, g->mesh_x[M_PISTON], nth, ptri,
+                           DEM_WALL_STEEL, &g->mesh_id[M_PISTON]);
+  free(ptri);
+  SA_CHECK(rc);
+  for (int k = 0; k < N_MESH; k++) {
+    g->mesh_f[k] = malloc(sizeof(double) * 3 * (size_t)g->mesh_nt[k]);
+    SA_REQUIRE(g->mesh_f[k], SA_ERR_MEMORY, "mesh forces");
+  }
+  return 0;
+}
+
+static int alloc_particles(Run *g, int n) {
+  free(g->px), free(g->pv), free(g->pf), free(g->pr);
+  g->px = malloc(sizeof(double) * 3 * (size_t)n), g->pv = malloc(sizeof(double) * 3 * (size_t)n);
+  g->pf = malloc(sizeof(double) * 3 * (size_t)n), g->pr = malloc(sizeof(double) * (size_t)n);
+  SA_REQUIRE(g->px && g->pv && g->pf && g->pr, SA_ERR_MEMORY, "grain buffers");
+  return 0;
+}
+
+/* Grain statistics: rms speed, highest grain top. */
+static int grain_stats(Run *g, double *v_rms, double *z_max) {
+  int n = dem_bridge_count(g->b);
+  SA_CHECK(alloc_particles(g, n > 0 ? n : 1));
+  SA_CHECK(dem_bridge_particles(g->b, g->px, g->pv, NULL, g->pr));
+  double s = 0, zm = -INFINITY;
+  for (int i = 0; i < n; i++) {
+    const double *v = g->pv + 3 * i;
+    s += v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    zm = fmax(zm, g->px[3 * i + 2] + g->pr[i]);
+    SA_REQUIRE(isfinite(s) && isfinite(zm), SA_ERR_NAN, "grain %d has a non-finite state", i);
+  }
+  *v_rms = n > 0 ? sqrt(s / n) : 0;
+  *z_max = zm;
+  return 0;
+}
+
+/* Run the DEM for time t [s] with nothing moving, in chunks (interruptible). */
+static int dem_advance(Run *g, double t) {
+  long steps = (long)ceil(t / g->dt);
+  double t0 = sa_time_now();
+  while (steps > 0) {
+    int n = steps > 2000 ? 2000 : (int)steps;
+    SA_CHECK(dem_bridge_run(g->b, n));
+    steps -= n;
+    if (sa_interrupted()) break;
+  }
+  g->t_dem += sa_time_now() - t0;
+  return 0;
+}
+
+/* Pour in rounds into the column above the bed, settle, cut the bed at fill_height. */
+static int pour(Run *g) {
+  const DemScene *sc = g->sc;
+  double r_in = R_BORE - 0.55 * g->d, bed_top = -80e-3, v_rms, z_max;
+  int left = g->n_grains, rounds = 0;
+  while (left > 0) {
+    SA_REQUIRE(!sa_interrupted(), SA_ERR_INTERRUPTED, "interrupted while pouring");
+    double z_lo = fmax(bed_top + g->d, -80e-3 + 0.6 * g->d), z_hi = g->z_top - 0.6 * g->d;
+    SA_REQUIRE(z_hi - z_lo > 2 * g->d, SA_ERR_DOMAIN, "the pour column is full after %d rounds "
+               "with %d grains left: the bore cannot take %d grains of %g mm (lower "
+               "[grains] packing_guess)", rounds, left, g->n_grains, g->d * 1e3);
+    double cap = 0.25 * M_PI * r_in * r_in * (z_hi - z_lo) / (M_PI * pow(g->d, 3) / 6);
+    int n = left < (int)cap ? left : (int)cap, got = 0;
+    SA_CHECK(dem_bridge_insert_cylinder(g->b, 0, 0, r_in, z_lo, z_hi, n, &got));
+    SA_REQUIRE(got > 0, SA_ERR_DOMAIN, "no grain could be inserted in round %d", rounds + 1);
+    left -= got;
+    rounds++;
+    /* let them fall: the free-fall time over the column plus settling */
+    SA_CHECK(dem_advance(g, sqrt(2 * (z_hi - bed_top) / G_ACC) + 0.05));
+    SA_CHECK(grain_stats(g, &v_rms, &z_max));
+    bed_top = z_max - 2 * g->d; /* grains still bouncing on top: stay conservative */
+    sa_log(SA_LOG_INFO, "dem", "pour round %d: %d grains inserted, %d left, bed top %.1f mm",
+           rounds, got, left, bed_top * 1e3);
+  }
+  /* settle */
+  double t = 0;
+  for (;;) {
+    SA_CHECK(grain_stats(g, &v_rms, &z_max));
+    if (v_rms < sc->dem.settle_speed) break;
+    SA_REQUIRE(t < sc->dem.settle_time_max, SA_ERR_DOMAIN, "the bed did not settle in %g s "
+               "(rms speed %.3g m/s > settle_speed %.3g m/s): raise settle_time_max or "
+               "restitution damping", sc->dem.settle_time_max, v_rms, sc->dem.settle_speed);
+    SA_CHECK(dem_advance(g, 0.02));
+    t += 0.02;
+  }
+  /* cut the bed at fill_height (grain centres above it are removed) and settle again */
+  char cmd[256];
+  double zc = sc->grains.fill_height - 0.5 * g->d;
+  snprintf(cmd, sizeof cmd, "region dem_above block EDGE EDGE EDGE EDGE %.9g EDGE units box", zc);
+  SA_CHECK(dem_bridge_command(g->b, cmd));
+  SA_CHECK(dem_bridge_command(g->b, "delete_atoms region dem_above"));
+  SA_CHECK(dem_advance(g, 0.05));
+  for (t = 0;;) {
+    SA_CHECK(grain_stats(g, &v_rms, &z_max));
+    if (v_rms < sc->dem.settle_speed) break;
+    SA_REQUIRE(t < sc->dem.settle_time_max, SA_ERR_DOMAIN, "the cut bed did not settle");
+    SA_CHECK(dem_advance(g, 0.02));
+    t += 0.02;
+  }
+  g->n_grains = dem_bridge_count(g->b);
+  SA_REQUIRE(z_max < sc->grains.fill_height + 0.5 * g->d || z_max > 0, SA_ERR_INTERNAL, "bed");
+  SA_REQUIRE(z_max > 0, SA_ERR_DOMAIN, "the settled bed (top %.1f mm) does not reach the top of "
+             "the cavity: too few grains (raise packing_guess)", z_max * 1e3);
+  /* bed volume: cavity + barrel up to the bed top */
+  g->V_bed0 = g->V0 + M_PI * R_BORE * R_BORE * z_max;
+  g->phi0 = g->n_grains * M_PI * pow(g->d, 3) / 6 / g->V_bed0;
+  sa_log(SA_LOG_INFO, "dem", "settled bed: %d grains, top at %.2f mm, packing fraction %.3f",
+         g->n_grains, z_max * 1e3, g->phi0);
+  return 0;
+}
+
+/* Move the piston to height z with velocity vz and hand it to LIGGGHTS. */
+static int set_piston(Run *g, double z, double vz) {
+  int nv = g->mesh_nv[M_PISTON];
+  piston_vertices(nv - 1, g->piston_r, z, g->mesh_x[M_PISTON]);
+  for (int i = 0; i < nv; i++) g->piston_v[3 * i] = g->piston_v[3 * i + 1] = 0, g->piston_v[3 * i + 2] = vz;
+  g->z_piston = z;
+  return dem_bridge_set_mesh_nodes(g->b, g->mesh_id[M_PISTON], g->mesh_x[M_PISTON], g->piston_v);
+}
+
+static double sum_z(const double *f, int nt) {
+  double s = 0;
+  for (int t = 0; t < nt; t++) s += f[3 * t + 2];
+  return s;
+}
+
+/* Lower the piston until it presses on the bed with contact_force. */
+static int lower_piston(Run *g, double *z_contact) {
+  const DemPistonCase *pc = &g->sc->piston;
+  /* start one diameter above the bed */
+  double v_rms, z_max;
+  SA_CHECK(grain_stats(g, &v_rms, &z_max));
+  double z = z_max + g->d, v = pc->approach_speed;
+  int chunk = g->sc->coupling.sample_every;
+  SA_CHECK(set_piston(g, z, 0));
+  for (long it = 0;; it++) {
+    SA_REQUIRE(!sa_interrupted(), SA_ERR_INTERRUPTED, "interrupted while lowering the piston");
+    SA_REQUIRE(z > z_max - 3 * g->d, SA_ERR_DOMAIN, "the piston went through the bed top "
+               "without reaching contact_force = %g N (lower it)", pc->contact_force);
+    z -= v * chunk * g->dt;
+    SA_CHECK(set_piston(g, z, -v));
+    double t0 = sa_time_now();
+    SA_CHECK(dem_bridge_run(g->b, chunk));
+    g->t_dem += sa_time_now() - t0;
+    SA_CHECK(dem_bridge_mesh_forces(g->b, g->mesh_id[M_PISTON], g->mesh_f[M_PISTON]));
+    if (sum_z(g->mesh_f[M_PISTON], g->mesh_nt[M_PISTON]) >= pc->contact_force) break;
+  }
+  SA_CHECK(set_piston(g, z, 0));
+  *z_contact = z;
+  sa_log(SA_LOG_INFO, "dem", "piston touches the bed at z = %.2f mm", z * 1e3);
+  return 0;
+}
+
+/* ------------------------------------------------------------------ one coupling step */
+
+/* DEM over time T with the piston moving from z0 at speed v (downward) and the wall moving
+ * from xw_prev to xw_cur; forces averaged over the samples. */
+static int dem_step(Run *g, double z0, double v, double T) {
+  const DemCouplingCase *cc = &g->sc->coupling;
+  long nsteps = (long)ceil(T / g->dt);
+  int chunk = cc->sample_every, nsamp = 0;
+  for (int k = 0; k < N_MESH; k++) g->F_mesh[k][0] = g->F_mesh[k][1] = g->F_mesh[k][2] = 0;
+  memset(g->f_sum, 0, sizeof(double) * 3 * (size_t)g->nt);
+  for (int k = 0; k < 3 * g->nv; k++) g->vw[k] = (g->xw_cur[k] - g->xw_prev[k]) / T;
+  double t = 0;
+  for (long done = 0; done < nsteps;) {
+    int n = nsteps - done < chunk ? (int)(nsteps - done) : chunk;
+    double te = (done + n) * g->dt, a = fmin(te / T, 1.0);
+    double t0 = sa_time_now();
+    /* positions at the end of the chunk; velocities constant over the step */
+    for (int k = 0; k < 3 * g->nv; k++) g->xw[k] = g->xw_prev[k] + a * (g->xw_cur[k] - g->xw_prev[k]);
+    SA_CHECK(dem_bridge_set_mesh_nodes(g->b, g->mesh_id[M_WALL], g->xw, g->vw));
+    SA_CHECK(set_piston(g, z0 - v * te, -v));
+    g->t_exchange += sa_time_now() - t0;
+    t0 = sa_time_now();
+    SA_CHECK(dem_bridge_run(g->b, n));
+    g->t_dem += sa_time_now() - t0;
+    t0 = sa_time_now();
+    SA_CHECK(dem_bridge_mesh_forces(g->b, g->mesh_id[M_WALL], g->f_tri));
+    for (int k = 0; k < 3 * g->nt; k++) g->f_sum[k] += g->f_tri[k];
+    for (int m = 0; m < N_MESH; m++) {
+      if (m != M_WALL)
+        SA_CHECK(dem_bridge_mesh_forces(g->b, g->mesh_id[m], g->mesh_f[m]));
+      const double *f = m == M_WALL ? g->f_tri : g->mesh_f[m];
+      for (int q = 0; q < g->mesh_nt[m]; q++)
+        for (int d = 0; d < 3; d++) g->F_mesh[m][d] += f[3 * q + d];
+    }
+    nsamp++;
+    g->t_exchange += sa_time_now() - t0;
+    done += n;
+    t = te;
+  }
+  (void)t;
+  for (int k = 0; k < 3 * g->nt; k++) {
+    g->f_sum[k] /= nsamp;
+    SA_REQUIRE(isfinite(g->f_sum[k]), SA_ERR_NAN, "non-finite wall force from the DEM");
+  }
+  for (int m = 0; m < N_MESH; m++)
+    for (int d = 0; d < 3; d++) g->F_mesh[m][d] /= nsamp;
+  double fabs_sum = 0;
+  for (int k = 0; k < 3 * g->nt; k++) fabs_sum += fabs(g->f_sum[k]);
+  sa_log(SA_LOG_DEBUG, "dem", "step forces: wall (%.4g, %.4g, %.4g) N, sum|f| %.4g N; barrel "
+         "(%.4g, %.4g, %.4g) N; piston (%.4g, %.4g, %.4g) N", g->F_mesh[0][0], g->F_mesh[0][1],
+         g->F_mesh[0][2], fabs_sum, g->F_mesh[1][0], g->F_mesh[1][1], g->F_mesh[1][2],
+         g->F_mesh[2][0], g->F_mesh[2][1], g->F_mesh[2][2]);
+  return 0;
+}
+
+/* Averaged wall forces -> relaxed FEM loads -> FEM solve -> new wall position. */
+static int fem_step(Run *g) {
+  double t0 = sa_time_now();
+  fem_coupling_surface_scatter(g->cs, g->f_sum, g->f_node);
+  double w = g->sc->coupling.relaxation;
+  for (int k = 0; k < 3 * g->nv; k++) g->f_app[k] += w * (g->f_node[k] - g->f_app[k]);
+  SA_CHECK(fem_solver_set_nodal_forces(g->s, g->nv, fem_coupling_surface_nodes(g->cs), g->f_app));
+  memcpy(g->xw_prev, g->xw_cur, sizeof(double) * 3 * (size_t)g->nv);
+  g->t_exchange += sa_time_now() - t0;
+  t0 = sa_time_now();
+  int rc = fem_solver_solve(g->s);
+  g->t_fem += sa_time_now() - t0;
+  FemSolveReport rep;
+  fem_solver_report(g->s, &rep);
+  g->newton = rep.newton_iters;
+  if (rc) {
+    sa_log(SA_LOG_ERROR, "dem", "FEM solve failed: %s", rep.reason);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  fem_coupling_surface_gather(g->cs, fem_solver_positions(g->s), g->xw_cur);
+  return 0;
+}
+
+/* Checks after a coupling step; fills the report fields. */
+static int step_checks(Run *g, int step, double s_disp, int full) {
+  const DemScene *sc = g->sc;
+  double t0 = sa_time_now();
+  int n = dem_bridge_count(g->b);
+  SA_REQUIRE(n == g->n_grains, SA_ERR_DOMAIN, "%d of %d grains left the simulation box at "
+             "piston displacement %.3f mm: they escaped through a gap (check the wall mesh and "
+             "the piston clearance) or were ejected (soften less / slow the piston)",
+             g->n_grains - n, g->n_grains, s_disp * 1e3);
+  g->overlap = dem_bridge_max_overlap(g->b);
+  SA_REQUIRE(isfinite(g->overlap) && g->overlap <= sc->dem.max_overlap, SA_ERR_DOMAIN,
+             "largest contact overlap %.3g of the diameter exceeds [dem] max_overlap = %g at "
+             "piston displacement %.3f mm: the grains are too soft for this load (lower "
+             "[grains] softening) or the piston too fast", g->overlap, sc->dem.max_overlap,
+             s_disp * 1e3);
+  /* force balance of the bed: the forces it puts on the walls carry its weight */
+  double W = g->n_grains * g->m_grain * (sc->coupling.gravity ? G_ACC : 0), F[3] = {0, 0, 0};
+  for (int m = 0; m < N_MESH; m++)
+    for (int d = 0; d < 3; d++) F[d] += g->F_mesh[m][d];
+  double scale = fabs(g->F_mesh[M_PISTON][2]) + W;
+  g->balance = sqrt(F[0] * F[0] + F[1] * F[1] + (F[2] + W) * (F[2] + W)) / scale;
+  g->piston_force = g->F_mesh[M_PISTON][2];
+  g->wall_fz = g->F_mesh[M_WALL][2], g->barrel_fz = g->F_mesh[M_BARREL][2];
+  if (step > 0)
+    SA_REQUIRE(g->balance <= sc->dem.balance_tol, SA_ERR_DOMAIN, "force balance of the bed "
+               "misses by %.1f %% of the load (piston %.4g N, walls %.4g N, barrel %.4g N, weight "
+               "%.4g N) at piston displacement %.3f mm: the bed is not quasi-static (slow the "
+               "piston) or force is lost", 100 * g->balance, g->piston_force, g->wall_fz,
+               g->barrel_fz, W, s_disp * 1e3);
+  /* volume balance: bed volume = cavity + barrel below the piston; packing follows */
+  double V = fem_solver_cavity_volume(g->s);
+  double V_bed = g->V_bed0 + (V - g->V0) - M_PI * R_BORE * R_BORE * s_disp;
+  g->phi = g->phi0 * g->V_bed0 / V_bed;
+  double phi_max = 0.7405 * (1 + 3 * g->overlap);
+  SA_REQUIRE(g->phi <= phi_max, SA_ERR_DOMAIN, "volume balance: the bed would be packed at %.3f "
+             "(> %.3f, close packing with the measured overlap) at piston displacement %.3f mm: "
+             "grains are lost through the wall or overlap too much", g->phi, phi_max,
+             s_disp * 1e3);
+  if (full) {
+    SA_CHECK(dem_bridge_particles(g->b, g->px, NULL, NULL, NULL));
+    int first, out = dem_bore_count_outside(g->bore, g->xw_cur, n, g->px, 0.5 * g->d, &first);
+    SA_REQUIRE(!out, SA_ERR_DOMAIN, "%d grains are outside the bore at piston displacement "
+               "%.3f mm (first at %.2f, %.2f, %.2f mm): they tunnelled through the wall (lower "
+               "[coupling] interval or [grains] softening)", out, s_disp * 1e3,
+               g->px[3 * first] * 1e3, g->px[3 * first + 1] * 1e3, g->px[3 * first + 2] * 1e3);
+  }
+  g->t_checks += sa_time_now() - t0;
+  return 0;
+}
+
+/* ------------------------------------------------------------------ outputs */
+
+static int write_vtk(Run *g, double s_disp) {
+  double t0 = sa_time_now();
+  const FemMesh *m = g->m;
+  char name[64], path[SA_STR_MAX], title[128];
+  snprintf(name, sizeof name, "fem_%04d.vtk", g->vtk_index);
+  SA_CHECK(sa_run_path(g->run, name, path));
+  SA_CHECK(fem_solver_element_stress(g->s, g->sigma, g->vm, NULL));
+  snprintf(title, sizeof title, "softact FEM-DEM silicone, piston displacement %.4f mm",
+           s_disp * 1e3);
+  SaVtk *v;
+  SA_CHECK(sa_vtk_grid_open(path, g->run->vtk, title, m->nnodes, fem_solver_positions(g->s),
+                            m->nelem, g->cell_types, g->cell_off, m->conn, &v));
+  int rc = sa_vtk_point_data(v, "displacement", 3, fem_solver_displacements(g->s));
+  if (!rc) rc = sa_vtk_cell_data(v, "cauchy_stress", 9, g->sigma);
+  if (!rc) rc = sa_vtk_cell_data(v, "von_mises", 1, g->vm);
+  if (!rc) rc = sa_vtk_cell_data(v, "region", 1, g->reg);
+  if (rc) {
+    sa_vtk_abort(&v);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  SA_CHECK(sa_vtk_commit(&v));
+  SA_CHECK(sa_vtk_series_add(g->vtk_fem, name, s_disp * 1e3));
+  /* grains */
+  int n = dem_bridge_count(g->b);
+  SA_CHECK(dem_bridge_particles(g->b, g->px, g->pv, g->pf, g->pr));
+  snprintf(name, sizeof name, "grains_%04d.vtk", g->vtk_index);
+  SA_CHECK(sa_run_path(g->run, name, path));
+  snprintf(title, sizeof title, "softact FEM-DEM grains, piston displacement %.4f mm",
+           s_disp * 1e3);
+  SA_CHECK(sa_vtk_points_open(path, g->run->vtk, title, n, g->px, &v));
+  rc = sa_vtk_point_data(v, "radius", 1, g->pr);
+  if (!rc) rc = sa_vtk_point_data(v, "velocity", 3, g->pv);
+  if (!rc) rc = sa_vtk_point_data(v, "force", 3, g->pf);
+  if (rc) {
+    sa_vtk_abort(&v);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  SA_CHECK(sa_vtk_commit(&v));
+  SA_CHECK(sa_vtk_series_add(g->vtk_grains, name, s_disp * 1e3));
+  g->vtk_index++;
+  g->t_out += sa_time_now() - t0;
+  return 0;
+}
+
+static int open_outputs(Run *g) {
+  const FemMesh *m = g->m;
+  g->cell_types = malloc(sizeof(int) * m->nelem);
+  g->cell_off = malloc(sizeof(int) * (m->nelem + 1));
+  g->sigma = malloc(sizeof(double) * 9 * m->nelem);
+  g->vm = malloc(sizeof(double) * m->nelem);
+  g->reg = malloc(sizeof(double) * m->nelem);
+  SA_REQUIRE(g->cell_types && g->cell_off && g->sigma && g->vm && g->reg, SA_ERR_MEMORY,
+             "output buffers");
+  for (int e = 0; e < m->nelem; e++) {
+    g->cell_types[e] = m->nen == 10 ? SA_VTK_QUADRATIC_TETRA : SA_VTK_TETRA;
+    g->cell_off[e] = e * m->nen;
+    g->reg[e] = m->region ? m->region[e] : 0;
+  }
+  g->cell_off[m->nelem] = m->nelem * m->nen;
+  static const char *names[] = {"piston_displacement", "bending_angle", "piston_force",
+                                "displaced_volume", "volume_change_rel", "cavity_volume_change",
+                                "packing_fraction", "wall_force_z", "barrel_force_z",
+                                "max_overlap", "force_balance_error", "newton_iterations",
+                                "time"};
+  static const char *units[] = {"m", "deg", "N", "m^3", "-", "m^3", "-", "N", "N", "-", "-", "-",
+                                "s"};
+  char path[SA_STR_MAX];
+  SA_CHECK(sa_run_path(g->run, "bending.csv", path));
+  SA_CHECK(sa_csv_open(path, 13, names, units, &g->csv));
+  SA_CHECK(sa_run_path(g->run, "fem.vtk.series", path));
+  SA_CHECK(sa_vtk_series_open(path, &g->vtk_fem));
+  SA_CHECK(sa_run_path(g->run, "grains.vtk.series", path));
+  SA_CHECK(sa_vtk_series_open(path, &g->vtk_grains));
+  return 0;
+}
+
+static int output_row(Run *g, double s_disp, double time) {
+  double ang;
+  SA_CHECK(fem_bending_angle(g->m, g->sc->coupling.tip_surface, fem_solver_positions(g->s), &ang));
+  g->angle = ang;
+  double V = fem_solver_cavity_volume(g->s), Vd = M_PI * R_BORE * R_BORE * s_disp;
+  double row[] = {s_disp, ang, g->piston_force, Vd, V / g->V0 - 1, V - g->V0, g->phi,
+                  g->wall_fz, g->barrel_fz, g->overlap, g->balance, g->newton, time};
+  return sa_csv_row(g->csv, row);
+}
+
+static void make_plots(const SaRun *run) {
+  char csv[SA_STR_MAX], png[SA_STR_MAX];
+  if (sa_run_path(run, "bending.csv", csv) || sa_run_path(run, "bending_angle.png", png)) {
+    sa_error_clear();
+    return;
+  }
+  /* x in mm: gnuplot expression through a using-column scale */
+  char body[2048];
+  snprintf(body, sizeof body,
+           "set datafile separator ','\nset grid\nset key top left\n"
+           "set title 'Granular actuator: bending angle (FEM-DEM)'\n"
+           "set xlabel 'piston displacement [mm]'\nset ylabel 'bending angle [deg]'\n"
+           "plot '%s' skip 2 using ($1*1e3):2 with lines lw 2 title 'FEM-DEM (LIGGGHTS)'\n",
+           csv);
+  if (sa_plot_script(png, body)) sa_error_clear();
+  if (sa_run_path(run, "piston_force.png", png)) {
+    sa_error_clear();
+    return;
+  }
+  snprintf(body, sizeof body,
+           "set datafile separator ','\nset grid\nset key top left\n"
+           "set title 'Granular actuator: piston force (FEM-DEM)'\n"
+           "set xlabel 'piston displacement [mm]'\nset ylabel 'piston force [N]'\n"
+           "plot '%s' skip 2 using ($1*1e3):3 with lines lw 2 title 'piston force', "
+           "'' skip 2 using ($1*1e3):8 with lines title 'wall z-force', "
+           "'' skip 2 using ($1*1e3):9 with lines title 'barrel z-force'\n", csv);
+  if (sa_plot_script(png, body)) sa_error_clear();
+  if (sa_run_path(run, "volume.png", png)) {
+    sa_error_clear();
+    return;
+  }
+  snprintf(body, sizeof body,
+           "set datafile separator ','\nset grid\nset key top left\n"
+           "set title 'Volume balance'\nset xlabel 'piston displacement [mm]'\n"
+           "set ylabel 'volume [mm^3]'\n"
+           "plot '%s' skip 2 using ($1*1e3):($4*1e9) with lines lw 2 title 'displaced volume', "
+           "'' skip 2 using ($1*1e3):($6*1e9) with lines lw 2 title 'cavity volume change'\n",
+           csv);
+  if (sa_plot_script(png, body)) sa_error_clear();
+}
+
+static int write_summary(Run *g, double s_reached, const char *status, double wall) {
+  char path[SA_STR_MAX];
+  SaFile *f = NULL;
+  SA_CHECK(sa_run_path(g->run, "summary.ini", path));
+  SA_CHECK(sa_file_open(path, &f));
+  FILE *fp = sa_file_stream(f);
+  FemSolverStats st;
+  fem_solver_stats(g->s, &st);
+  double tot = g->t_dem + g->t_exchange + g->t_fem;
+  fprintf(fp, "; softact FEM-DEM granular bending summary\n[result]\n"
+          "status = %s\npiston_displacement = %.9g ; m\nbending_angle = %.6f ; deg\n"
+          "piston_force = %.6g ; N\nvolume_change_rel = %.6g\npacking_fraction_initial = %.5f\n"
+          "packing_fraction_final = %.5f\nmax_overlap = %.5g ; of the diameter\n"
+          "force_balance_error = %.4g\ngrains = %d\n",
+          status, s_reached, g->angle, g->piston_force,
+          fem_solver_cavity_volume(g->s) / g->V0 - 1, g->phi0, g->phi, g->overlap, g->balance,
+          g->n_grains);
+  fprintf(fp, "\n[dem]\ntime_step = %.6g ; s\nyoung_used = %.6g ; Pa\n", g->dt,
+          g->sc->grains.young / g->sc->grains.softening);
+  fprintf(fp, "\n[timing]\nwall = %.3f ; s\ndem = %.3f ; s\nexchange = %.3f ; s\nfem = %.3f ; s\n"
+          "checks = %.3f ; s\noutput = %.3f ; s\nexchange_over_dem = %.4f\nfem_over_dem = %.4f\n"
+          "dem_share = %.4f\n", wall, g->t_dem, g->t_exchange, g->t_fem, g->t_checks, g->t_out,
+          g->t_exchange / fmax(g->t_dem, 1e-12), g->t_fem / fmax(g->t_dem, 1e-12),
+          g->t_dem / fmax(tot, 1e-12));
+  fprintf(fp, "\n[fem]\nnodes = %d\nelements = %d\nwall_vertices = %d\nwall_triangles = %d\n"
+          "factorisations = %d\nreused_factors = %d\nassemblies = %d\n", st.nnodes, st.nelem,
+          g->nv, g->nt, st.n_factor, st.n_reuse, st.n_assemble);
+  return sa_file_commit(&f);
+}
+
+/* ------------------------------------------------------------------ the run */
+
+static int stroke(Run *g, double z_contact, double *s_reached) {
+  const DemScene *sc = g->sc;
+  const DemCouplingCase *cc = &sc->coupling;
+  double v = sc->piston.speed, T = cc->interval / v;
+  int nint = (int)ceil(sc->piston.stroke / cc->interval - 1e-9);
+  SaProgress *prog = NULL;
+  if (sa_progress_start("piston stroke", nint + N_PRELOAD, &prog)) sa_error_clear();
+  double time = 0;
+  *s_reached = 0;
+  int rc = 0;
+  /* preload: the settled bed's weight on the wall, piston at rest */
+  for (int k = 0; k < N_PRELOAD && !rc; k++) {
+    rc = dem_step(g, z_contact, 0, T);
+    if (!rc) rc = fem_step(g);
+    if (!rc) rc = step_checks(g, 0, 0, k == N_PRELOAD - 1);
+    time += T;
+    if (prog) sa_progress_update(prog, k + 1);
+  }
+  if (!rc) rc = output_row(g, 0, time);
+  if (!rc) rc = write_vtk(g, 0);
+  for (int k = 1; k <= nint && !rc; k++) {
+    if (sa_interrupted()) {
+      rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted at piston displacement %.3f mm",
+                    *s_reached * 1e3);
+      break;
+    }
+    double s0 = (k - 1) * cc->interval, s1 = fmin(k * cc->interval, sc->piston.stroke);
+    double Tk = (s1 - s0) / v;
+    rc = dem_step(g, z_contact - s0, v, Tk);
+    if (!rc) rc = fem_step(g);
+    if (!rc) rc = step_checks(g, k, s1, k % sc->dem.check_every == 0 || k == nint);
+    if (rc) break;
+    time += Tk;
+    *s_reached = s1;
+    rc = output_row(g, s1, time);
+    int every = cc->vtk_every;
+    if (!rc && ((every > 0 && k % every == 0) || k == nint)) rc = write_vtk(g, s1);
+    if (prog) sa_progress_update(prog, N_PRELOAD + k);
+    sa_log(SA_LOG_DEBUG, "dem", "s = %.3f mm: angle %.3f deg, piston %.4g N, overlap %.3g, "
+           "balance %.3g, phi %.4f, %d Newton", s1 * 1e3, g->angle, g->piston_force, g->overlap,
+           g->balance, g->phi, g->newton);
+    if (k % 10 == 0 || k == nint)
+      sa_log(SA_LOG_INFO, "dem", "piston %6.2f mm: bending angle %7.3f deg, piston force %8.3f N,"
+             " cavity volume %+.2f %%", s1 * 1e3, g->angle, g->piston_force,
+             100 * (fem_solver_cavity_volume(g->s) / g->V0 - 1));
+  }
+  sa_progress_finish(&prog);
+  return rc;
+}
+
+static void run_free(Run *g) {
+  if (g->csv) sa_csv_abort(&g->csv);
+  sa_vtk_series_close(&g->vtk_fem);
+  sa_vtk_series_close(&g->vtk_grains);
+  dem_bridge_destroy(&g->b);
+  dem_bore_destroy(&g->bore);
+  fem_coupling_surface_destroy(&g->cs);
+  fem_solver_destroy(&g->s);
+  fem_mesh_destroy(&g->m);
+  free(g->mats);
+  double *bufs[] = {g->xw_prev, g->xw_cur, g->xw, g->vw, g->f_tri, g->f_sum, g->f_node,
+                    g->f_app, g->px, g->pv, g->pf, g->pr, g->sigma, g->vm, g->reg};
+  for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++) free(bufs[i]);
+  for (int k = 0; k < N_MESH; k++) free(g->mesh_x[k]), free(g->mesh_f[k]);
+  free(g->piston_v);
+  free(g->cell_types);
+  free(g->cell_off);
+}
+
+int dem_granular_run(const DemScene *sc, const SaRun *run) {
+  Run g;
+  memset(&g, 0, sizeof g);
+  g.sc = sc, g.run = run;
+  double t_start = sa_time_now(), z_contact = 0, s_reached = 0;
+  int rc = setup_fem(&g);
+  if (!rc) rc = setup_dem(&g);
+  if (!rc) rc = open_outputs(&g);
+  if (!rc) rc = pour(&g);
+  if (!rc) rc = alloc_particles(&g, g.n_grains);
+  if (!rc) rc = lower_piston(&g, &z_contact);
+  int started = !rc;
+  if (!rc) rc = stroke(&g, z_contact, &s_reached);
+  if (g.csv && started) { /* keep what was computed, also after a failure */
+    int r2 = sa_csv_commit(&g.csv);
+    if (!rc) rc = r2;
+  }
+  if (rc && rc != SA_ERR_INTERRUPTED) sa_log(SA_LOG_ERROR, "dem", "%s", sa_error_message());
+  if (started && g.s) {
+    const char *status = !rc ? "completed" : rc == SA_ERR_INTERRUPTED ? "interrupted" : "stopped early";
+    if (write_summary(&g, s_reached, status, sa_time_now() - t_start) && !rc)
+      rc = SA_ERROR(SA_ERR_IO, "summary.ini");
+    if (run->params.plots) make_plots(run);
+  }
+  sa_timing_add("dem", g.t_dem);
+  sa_timing_add("exchange", g.t_exchange);
+  sa_timing_add("fem solve", g.t_fem);
+  sa_timing_add("run checks", g.t_checks);
+  sa_timing_add("output (vtk)", g.t_out);
+  if (started)
+    sa_log(SA_LOG_INFO, "dem", "time: DEM %.1f s, exchange %.1f s (%.1f %% of DEM), FEM %.1f s "
+           "(%.2f x DEM), checks %.1f s, VTK %.1f s", g.t_dem, g.t_exchange,
+           100 * g.t_exchange / fmax(g.t_dem, 1e-12), g.t_fem, g.t_fem / fmax(g.t_dem, 1e-12),
+           g.t_checks, g.t_out);
+  run_free(&g);
+  return rc ? sa_error_push(rc, __func__, __FILE__, __LINE__) : 0;
+}

@@ -1,0 +1,205 @@
+/* dem_scene.c - the granular bending scene (FEM-DEM): case tables, validation, module glue.
+ *
+ * Selected by a [grains] section; it also reads the actuator's [mesh], [material] and [solver]
+ * sections (fem_actuator.h). Everything here is plain C with no LIGGGHTS: the run itself lives
+ * in the plugin libsoftact_dem.so (dem_granular.c + the LIGGGHTS bridge), loaded with dlopen
+ * only when a granular scene runs, so that every other scene never loads LIGGGHTS or MPI. */
+#include "dem_scene.h"
+
+#include <dlfcn.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dem_module.h"
+#include "sa_error.h"
+#include "sa_log.h"
+
+#define P(f) offsetof(DemGrainCase, f)
+static const SaParam grain_params[] = {
+    {"diameter", SA_PARAM_REAL, P(diameter), "m", "2e-3", 0, 6e-3, SA_MIN_OPEN, NULL,
+     "bead diameter (monodisperse)"},
+    {"density", SA_PARAM_REAL, P(density), "kg/m^3", "2500", 0, INFINITY, SA_MIN_OPEN, NULL,
+     "bead material density"},
+    {"young", SA_PARAM_REAL, P(young), "Pa", "63e9", 0, INFINITY, SA_MIN_OPEN, NULL,
+     "bead Young's modulus (physical; the DEM uses young / softening)"},
+    {"poisson", SA_PARAM_REAL, P(poisson), "-", "0.25", 0, 0.5, SA_MAX_OPEN, NULL,
+     "bead Poisson's ratio"},
+    {"restitution", SA_PARAM_REAL, P(restitution), "-", "0.5", 0, 1, SA_MIN_OPEN, NULL,
+     "coefficient of restitution (all contacts)"},
+    {"friction", SA_PARAM_REAL, P(friction), "-", "0.4", 0, 10, 0, NULL,
+     "bead-bead Coulomb friction coefficient"},
+    {"friction_wall", SA_PARAM_REAL, P(friction_wall), "-", "0.6", 0, 10, 0, NULL,
+     "bead-silicone friction coefficient"},
+    {"friction_piston", SA_PARAM_REAL, P(friction_piston), "-", "0.3", 0, 10, 0, NULL,
+     "bead-piston and bead-barrel friction coefficient"},
+    {"rolling_friction", SA_PARAM_REAL, P(rolling_friction), "-", "0.02", 0, 1, 0, NULL,
+     "rolling-resistance coefficient (epsd2 model)"},
+    {"softening", SA_PARAM_REAL, P(softening), "-", "1000", 1, 1e6, 0, NULL,
+     "the DEM contact stiffness uses young / softening (larger time step); effect in docs/dem.md"},
+    {"fill_height", SA_PARAM_REAL, P(fill_height), "m", "0.03", 0, 1, SA_MIN_OPEN, NULL,
+     "bed surface above the top of the cavity (z = 0) after settling"},
+    {"packing_guess", SA_PARAM_REAL, P(packing_guess), "-", "0.6", 0.3, 0.74, 0, NULL,
+     "packing fraction used to size the pour (grains above fill_height are removed)"},
+};
+#undef P
+#define P(f) offsetof(DemPistonCase, f)
+static const SaParam piston_params[] = {
+    {"stroke", SA_PARAM_REAL, P(stroke), "m", "0.025", 0, 1, SA_MIN_OPEN, NULL,
+     "piston travel after it touches the bed"},
+    {"speed", SA_PARAM_REAL, P(speed), "m/s", "0.02", 0, 10, SA_MIN_OPEN, NULL,
+     "piston speed during the stroke"},
+    {"approach_speed", SA_PARAM_REAL, P(approach_speed), "m/s", "0.05", 0, 10, SA_MIN_OPEN, NULL,
+     "speed at which the piston is lowered onto the settled bed"},
+    {"barrel_length", SA_PARAM_REAL, P(barrel_length), "m", "0.04", 0, 1, SA_MIN_OPEN, NULL,
+     "rigid feed barrel above the cavity (z = 0 .. barrel_length)"},
+    {"contact_force", SA_PARAM_REAL, P(contact_force), "N", "0.05", 0, INFINITY, SA_MIN_OPEN,
+     NULL, "piston force that counts as touching the bed (displacement zero)"},
+};
+#undef P
+#define P(f) offsetof(DemCouplingCase, f)
+static const SaParam coupling_params[] = {
+    {"interval", SA_PARAM_REAL, P(interval), "m", "1e-4", 0, 0.01, SA_MIN_OPEN, NULL,
+     "piston travel per coupling step (DEM forces -> FEM solve -> wall positions)"},
+    {"relaxation", SA_PARAM_REAL, P(relaxation), "-", "0.5", 0, 1, SA_MIN_OPEN, NULL,
+     "under-relaxation of the wall forces handed to the FEM (1 = plain staggered)"},
+    {"sample_every", SA_PARAM_INT, P(sample_every), "-", "20", 1, 100000, 0, NULL,
+     "DEM steps between wall updates and force samples within a coupling step"},
+    {"gravity", SA_PARAM_BOOL, P(gravity), "-", "1", 0, 0, 0, NULL,
+     "gravity (-z, 9.81 m/s^2) on grains and silicone"},
+    {"vtk_every", SA_PARAM_INT, P(vtk_every), "-", "25", 0, 100000, 0, NULL,
+     "write VTK (silicone + grains) every this many coupling steps (0 = first and last only)"},
+    {"wall_surface", SA_PARAM_STRING, P(wall_surface), "-", "cavity_wall", 0, 0, 0, NULL,
+     "mesh surface in contact with the grains (cavity wall and floor)"},
+    {"fixed_surface", SA_PARAM_STRING, P(fixed_surface), "-", "fixed_end", 0, 0, 0, NULL,
+     "mesh surface clamped in x, y and z"},
+    {"tip_surface", SA_PARAM_STRING, P(tip_surface), "-", "tip", 0, 0, 0, NULL,
+     "surface whose mean normal defines the bending angle"},
+};
+#undef P
+#define P(f) offsetof(DemNumericsCase, f)
+static const SaParam dem_params[] = {
+    {"dt_fraction", SA_PARAM_REAL, P(dt_fraction), "-", "0.2", 0, 0.35, SA_MIN_OPEN, NULL,
+     "DEM time step as a fraction of the Rayleigh time step of the softened grains "
+     "(above 0.35 is refused as unsafe)"},
+    {"skin", SA_PARAM_REAL, P(skin), "-", "0.2", 0.01, 2, 0, NULL,
+     "neighbour skin as a fraction of the bead diameter"},
+    {"settle_speed", SA_PARAM_REAL, P(settle_speed), "m/s", "2e-3", 0, INFINITY, SA_MIN_OPEN,
+     NULL, "the bed counts as settled when the rms grain speed falls below this"},
+    {"settle_time_max", SA_PARAM_REAL, P(settle_time_max), "s", "1.5", 0, INFINITY, SA_MIN_OPEN,
+     NULL, "give up settling after this much simulated time"},
+    {"max_overlap", SA_PARAM_REAL, P(max_overlap), "-", "0.05", 0, 0.5, SA_MIN_OPEN, NULL,
+     "stop when a contact overlap exceeds this fraction of the diameter (soften less)"},
+    {"balance_tol", SA_PARAM_REAL, P(balance_tol), "-", "0.1", 0, 10, SA_MIN_OPEN, NULL,
+     "stop when the grains' force balance misses by more than this fraction of the load"},
+    {"seed", SA_PARAM_INT, P(seed), "-", "15485863", 10001, 2147483647, 0, NULL,
+     "random seed of the pour (LIGGGHTS wants a prime > 10000)"},
+    {"check_every", SA_PARAM_INT, P(check_every), "-", "10", 1, 100000, 0, NULL,
+     "coupling steps between the tunnelling checks (grains inside the bore)"},
+};
+#undef P
+
+static const SaParamTable grain_table = {"grains", "dem",
+                                         "granular fill of the FEM-DEM scene (selects it)",
+                                         grain_params, SA_NPARAMS(grain_params)};
+static const SaParamTable piston_table = {"piston", "dem", "piston and feed barrel",
+                                          piston_params, SA_NPARAMS(piston_params)};
+static const SaParamTable coupling_table = {"coupling", "dem", "FEM-DEM exchange and outputs",
+                                            coupling_params, SA_NPARAMS(coupling_params)};
+static const SaParamTable numerics_table = {"dem", "dem", "DEM numerics and run checks",
+                                            dem_params, SA_NPARAMS(dem_params)};
+static const SaParamTable *const dem_tables[] = {
+    &grain_table,  &piston_table, &coupling_table, &numerics_table, &fem_actuator_mesh_table,
+    &fem_actuator_material_table, &fem_actuator_solver_table};
+
+double dem_scene_rayleigh_dt(double diameter, double density, double young, double poisson) {
+  double G = young / (2 * (1 + poisson));
+  return M_PI * 0.5 * diameter * sqrt(density / G) / (0.1631 * poisson + 0.8766);
+}
+
+static int dem_check(const SaCase *c, void **out) {
+  *out = NULL;
+  DemScene *s;
+  SA_CALLOC(s, 1);
+  const char *f = sa_case_path(c);
+  snprintf(s->case_path, sizeof s->case_path, "%s", f);
+  int rc = fem_actuator_load(c, &s->act);
+  if (!rc) rc = sa_params_load(&grain_table, c, &s->grains);
+  if (!rc) rc = sa_params_load(&piston_table, c, &s->piston);
+  if (!rc) rc = sa_params_load(&coupling_table, c, &s->coupling);
+  if (!rc) rc = sa_params_load(&numerics_table, c, &s->dem);
+  /* the bore is the cavity radius of meshes/actuator.geo (6 mm, /work/shared/ACTUATOR.md) */
+  const double r_bore = 6e-3;
+  const DemGrainCase *g = &s->grains;
+  const DemPistonCase *p = &s->piston;
+  if (!rc && g->diameter >= r_bore)
+    rc = SA_ERROR(SA_ERR_INPUT, "%s: [grains] diameter = %g m: beads must be smaller than the "
+                  "bore radius %g m (at least two across the bore)", f, g->diameter, r_bore);
+  if (!rc && g->fill_height >= p->barrel_length - g->diameter)
+    rc = SA_ERROR(SA_ERR_INPUT, "%s: [grains] fill_height = %g m must leave room for the piston "
+                  "inside the barrel (barrel_length %g m minus one diameter)", f, g->fill_height,
+                  p->barrel_length);
+  if (!rc && p->stroke >= g->fill_height)
+    rc = SA_ERROR(SA_ERR_INPUT, "%s: [piston] stroke = %g m is longer than the barrel below the "
+                  "bed surface (fill_height = %g m): the piston would enter the deformable cavity "
+                  "(allowed: stroke < fill_height)", f, p->stroke, g->fill_height);
+  if (!rc && s->coupling.interval > p->stroke)
+    rc = SA_ERROR(SA_ERR_INPUT, "%s: [coupling] interval = %g m is longer than the stroke %g m",
+                  f, s->coupling.interval, p->stroke);
+  if (rc) {
+    free(s);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  *out = s;
+  return 0;
+}
+
+static void dem_write_resolved(const void *scene, FILE *f) {
+  const DemScene *s = scene;
+  const void *parts[] = {&s->grains, &s->piston, &s->coupling, &s->dem};
+  for (int i = 0; i < 4; i++) {
+    sa_params_write(dem_tables[i], parts[i], f);
+    fprintf(f, "\n");
+  }
+  fem_actuator_write_resolved(&s->act, f);
+}
+
+static void dem_destroy(void **scene) {
+  if (!scene) return;
+  free(*scene);
+  *scene = NULL;
+}
+
+/* Load the plugin and run. Its path is fixed at build time (SOFTACT_DEM_PLUGIN); the
+ * environment variable SOFTACT_DEM_PLUGIN overrides it. RTLD_GLOBAL: OpenMPI loads its own
+ * components with dlopen and needs libmpi's symbols global. */
+static int dem_run(void *scene, SaRun *run) {
+  const char *path = getenv("SOFTACT_DEM_PLUGIN");
+#ifdef SOFTACT_DEM_PLUGIN
+  if (!path || !path[0]) path = SOFTACT_DEM_PLUGIN;
+#endif
+  SA_REQUIRE(path && path[0], SA_ERR_LIBRARY, "this softact was built without the DEM plugin");
+  void *h = dlopen(path, RTLD_NOW | RTLD_GLOBAL);
+  SA_REQUIRE(h, SA_ERR_LIBRARY, "cannot load the FEM-DEM plugin %s: %s", path, dlerror());
+  DemGranularRunFn fn;
+  *(void **)&fn = dlsym(h, DEM_GRANULAR_RUN_SYMBOL);
+  SA_REQUIRE(fn, SA_ERR_LIBRARY, "%s has no %s", path, DEM_GRANULAR_RUN_SYMBOL);
+  sa_log(SA_LOG_DEBUG, "dem", "loaded %s", path);
+  /* the plugin stays loaded: LIGGGHTS/OpenMPI do not support being unloaded */
+  return fn(scene, run);
+}
+
+const SaModule dem_module = {
+    .name = "dem",
+    .trigger = "grains",
+    .extends = "mesh",
+    .help = "FEM-DEM granular bending: LIGGGHTS beads pushed by a piston into the FEM actuator",
+    .tables = dem_tables,
+    .ntables = SA_NPARAMS(dem_tables),
+    .check = dem_check,
+    .write_resolved = dem_write_resolved,
+    .run = dem_run,
+    .destroy = dem_destroy,
+};

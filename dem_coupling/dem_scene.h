@@ -1,0 +1,54 @@
+/* dem_scene.h - the granular bending scene (FEM-DEM coupling), private to dem_coupling/.
+ *
+ * Two halves so that a scene without particles never loads LIGGGHTS or MPI:
+ *   dem_scene.c     case tables, validation and the module glue; linked into softact; knows no
+ *                   LIGGGHTS (no MPI either).
+ *   dem_granular.c  the coupled run; built with the LIGGGHTS bridge into the plugin
+ *                   libsoftact_dem.so, which dem_scene.c dlopen()s only when such a scene runs.
+ * Geometry, materials and grains: /work/shared/ACTUATOR.md; the coupling scheme: docs/dem.md. */
+#ifndef DEM_SCENE_H
+#define DEM_SCENE_H
+
+#include "fem_actuator.h"
+#include "sa_params.h"
+#include "sa_run.h"
+
+typedef struct {
+  double diameter, density, young, poisson, restitution, friction, friction_wall,
+      friction_piston, rolling_friction, softening, fill_height, packing_guess;
+} DemGrainCase;
+
+typedef struct {
+  double stroke, speed, approach_speed, barrel_length, contact_force;
+} DemPistonCase;
+
+typedef struct {
+  double interval, relaxation;
+  int sample_every, gravity, vtk_every;
+  char wall_surface[SA_STR_MAX], fixed_surface[SA_STR_MAX], tip_surface[SA_STR_MAX];
+} DemCouplingCase;
+
+typedef struct {
+  double dt_fraction, skin, settle_speed, max_overlap, balance_tol, settle_time_max;
+  int seed, check_every;
+} DemNumericsCase;
+
+typedef struct {
+  FemActuatorCase act;
+  DemGrainCase grains;
+  DemPistonCase piston;
+  DemCouplingCase coupling;
+  DemNumericsCase dem;
+  char case_path[SA_STR_MAX];
+} DemScene;
+
+/* The plugin's entry point (dem_granular.c), looked up by name with dlsym. */
+typedef int (*DemGranularRunFn)(const DemScene *sc, const SaRun *run);
+#define DEM_GRANULAR_RUN_SYMBOL "dem_granular_run"
+int dem_granular_run(const DemScene *sc, const SaRun *run);
+
+/* Rayleigh time step of a Hertz contact [s] (Li, Xu & Thornton 2005):
+ * pi R sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)). */
+double dem_scene_rayleigh_dt(double diameter, double density, double young, double poisson);
+
+#endif
