@@ -996,6 +996,21 @@ static int run_sweep(const HmsaScene *s, HmsaVariant *v, const SaRun *run, Summa
     return rc;
   }
   sum_real(S, "sweep_seconds", sa_time_now() - t0);
+  {
+    /* peaks_TAG.csv: the refined peaks of the from-rest sweep, for the figures */
+    char pcsv[256], ppath[SA_STR_MAX];
+    const char *pn[] = {"omega", "amplitude", "primary"}, *pu[] = {"-", "-", "1 primary"};
+    SaCsv *t = NULL;
+    file_name(pcsv, sizeof pcsv, "peaks", v->tag, "csv");
+    int r2 = sa_run_path(run, pcsv, ppath);
+    if (!r2) r2 = sa_csv_open(ppath, 3, pn, pu, &t);
+    for (int i = 0; !r2 && i < npk; i++) {
+      double row[3] = {peaks[i].omega, peaks[i].amp, i == prim};
+      r2 = sa_csv_row(t, row);
+    }
+    if (!r2) r2 = sa_csv_commit(&t); else if (t) sa_csv_abort(&t);
+    if (r2) { free(buf); free(status); return sa_error_push(r2, __func__, __FILE__, __LINE__); }
+  }
   sum_real(S, "omega_primary_estimate", omega_p);
   if (prim >= 0) {
     sum_real(S, "peak_omega", peaks[prim].omega);
@@ -1041,6 +1056,12 @@ static int run_sweep(const HmsaScene *s, HmsaVariant *v, const SaRun *run, Summa
       const char *c = pass ? csv2 : csv;
       hmsa_figure_curve(&f, 0, c, "1:($3==0?$2:1/0)", 0, HMSA_CURVE_LINEPOINTS);
       hmsa_figure_legend(&f, "from rest", 0, HMSA_CURVE_LINEPOINTS);
+      if (!pass) {
+        char pcsv[256];
+        file_name(pcsv, sizeof pcsv, "peaks", v->tag, "csv");
+        hmsa_figure_curve(&f, 0, pcsv, "1:2", 6, HMSA_CURVE_MARK);
+        hmsa_figure_legend(&f, "peak (golden section)", 6, HMSA_CURVE_MARK);
+      }
       if (w->continuation) {
         hmsa_figure_curve(&f, 0, c, "1:($3==1?$2:1/0)", 1, HMSA_CURVE_LINE);
         hmsa_figure_curve(&f, 0, c, "1:($3==2?$2:1/0)", 2, HMSA_CURVE_DASH);
@@ -1193,9 +1214,14 @@ static void write_overlays(const HmsaScene *s, const SaRun *run) {
         const HmsaVariant *v = &s->var[i];
         char c[256];
         file_name(c, sizeof c, pass ? "sweep_inplane" : "sweep", v->tag, "csv");
-        if (v->ok)
-          hmsa_figure_curve(&f, layout_panel(s, &L, v), c, "1:($3==0?$2:1/0)", curve_color(&L, v),
-                            HMSA_CURVE_LINEPOINTS);
+        if (!v->ok) continue;
+        hmsa_figure_curve(&f, layout_panel(s, &L, v), c, "1:($3==0?$2:1/0)", curve_color(&L, v),
+                          HMSA_CURVE_LINEPOINTS);
+        if (!pass) {
+          file_name(c, sizeof c, "peaks", v->tag, "csv");
+          hmsa_figure_curve(&f, layout_panel(s, &L, v), c, "1:2", 6, HMSA_CURVE_MARK);
+          hmsa_figure_legend(&f, "peak (golden section)", 6, HMSA_CURVE_MARK);
+        }
       }
       figure_write(run, pass ? "overlay_sweep_inplane.png" : "overlay_sweep.png", &f);
     }

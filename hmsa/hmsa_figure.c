@@ -202,7 +202,7 @@ int hmsa_figure_render(const char *png_path, const HmsaFigure *fig) {
     }
   }
   int head = nlines ? 14 + 24 * nlines : 10;
-  int top = head + 24 * leg_rows + 10;
+  int top = head + 24 * leg_rows + 18;
   int H = top + rows * (ph + ptitle) + (rows - 1) * (gap_y - ptitle) + bottom;
   char *body = NULL;
   size_t size = 0;
