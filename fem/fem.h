@@ -167,6 +167,10 @@ void fem_solver_set_domain_check(FemSolver *s, FemDomainCheck fn, void *ctx);
  * first tangent assembly rebuilds the pattern (FemSolverStats.n_pattern_rebuilds). */
 int fem_solver_add_spring(FemSolver *s, int a, int b, double k);
 
+/* Bodies (connected parts of the model, contributors' pairs included) with no fixed dof and
+ * no ground spring, found in setup (a WARN names them; a singular tangent then says so). */
+int fem_solver_floating_bodies(const FemSolver *s);
+
 /* Monitor called after every converged substep (static) / step (dynamic); a non-zero return
  * stops the solve with that code. */
 typedef int (*FemMonitor)(FemSolver *s, void *ctx);

@@ -6,6 +6,7 @@
  * done in setup; fem_dofmap_rebuild repeats it (new cholmod_analyze) only when a contributor
  * couples a pair outside the pattern. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -292,6 +293,60 @@ static int build_all(FemSolver *s) {
   return 0;
 }
 
+/* Bodies (connected components of the node graph, contributors' pairs included) that nothing
+ * holds: no fixed dof and no ground spring in the component. Their tangent is singular until a
+ * contact or a coupling holds them; say so now, in words, instead of failing later in CHOLMOD
+ * or UMFPACK. Fills s->dm.floating_msg (empty if every body is held). */
+static int diagnose_floating(FemSolver *s) {
+  int N = s->N, *comp, *held, *stack, ncomp = 0;
+  SA_CALLOC(comp, N);
+  SA_CALLOC(stack, N);
+  for (int i = 0; i < N; i++) comp[i] = -1;
+  for (int i = 0; i < N; i++) {
+    if (comp[i] >= 0) continue;
+    int top = 0;
+    stack[top++] = i;
+    comp[i] = ncomp;
+    while (top) {
+      int B = stack[--top];
+      for (int t = s->dm.adj_ptr[B]; t < s->dm.adj_ptr[B + 1]; t++)
+        if (comp[s->dm.adj[t]] < 0) comp[s->dm.adj[t]] = ncomp, stack[top++] = s->dm.adj[t];
+    }
+    ncomp++;
+  }
+  held = calloc((size_t)ncomp, sizeof *held);
+  int *size = calloc((size_t)ncomp, sizeof *size), *first = malloc((size_t)ncomp * sizeof *first);
+  if (!held || !size || !first) {
+    free(comp), free(stack), free(held), free(size), free(first);
+    return SA_ERROR(SA_ERR_MEMORY, "floating-body diagnosis");
+  }
+  for (int i = 0; i < N; i++) {
+    if (s->dm.fixmask[i]) held[comp[i]] = 1;
+    if (size[comp[i]]++ == 0) first[comp[i]] = i;
+  }
+  for (int k = 0; k < s->as.nsprings; k++)
+    if (s->as.spring_nodes[2 * k + 1] < 0) held[comp[s->as.spring_nodes[2 * k]]] = 1;
+  s->dm.nfloating = 0;
+  s->dm.floating_msg[0] = '\0';
+  size_t len = 0;
+  for (int c = 0; c < ncomp; c++) {
+    if (held[c]) continue;
+    s->dm.nfloating++;
+    const double *X = s->m->xyz + 3 * (size_t)first[c];
+    if (len < sizeof s->dm.floating_msg - 1)
+      len += (size_t)snprintf(s->dm.floating_msg + len, sizeof s->dm.floating_msg - len,
+                              "%sbody of %d node(s) containing node %d at (%g, %g, %g)",
+                              len ? "; " : "", size[c], first[c], X[0], X[1], X[2]);
+  }
+  if (s->dm.nfloating)
+    sa_log(SA_LOG_WARN, "fem", "%d floating body/bodies: %s: no fixed dof and no contributor "
+           "ties it to a supported body, so the tangent is singular until contact holds it "
+           "(fix dofs, or hold it with weak springs: fem_solver_add_spring(s, node, -1, k))",
+           s->dm.nfloating, s->dm.floating_msg);
+  free(comp), free(stack), free(held), free(size), free(first);
+  return 0;
+}
+
 int fem_dofmap_build(FemSolver *s) {
   int *pairs = NULL, np = 0;
   SA_CHECK(number_dofs(s));
@@ -305,6 +360,7 @@ int fem_dofmap_build(FemSolver *s) {
   }
   free(pairs);
   SA_CHECK(build_all(s));
+  SA_CHECK(diagnose_floating(s));
   return 0;
 }
 
@@ -313,6 +369,7 @@ int fem_dofmap_rebuild(FemSolver *s, int npairs, const int *pairs) {
   for (int k = 0; k < npairs; k++) SA_CHECK(add_extra(&s->dm, pairs[2 * k], pairs[2 * k + 1]));
   free_pattern(&s->dm);
   SA_CHECK(build_all(s));
+  SA_CHECK(diagnose_floating(s));
   /* everything sized or indexed by the old pattern */
   free(s->as.val);
   SA_CALLOC(s->as.val, s->dm.nnz);

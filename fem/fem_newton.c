@@ -191,6 +191,10 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
   t->have_fact = rc == 0;
   if (rc) {
     *why = FEM_DIVERGED_LINEAR_SOLVE;
+    if (rc > 0 && s->dm.nfloating)
+      return SA_ERROR(rc, "tangent singular: %d floating body/bodies (%s); fix dofs or hold "
+                      "them with weak springs (fem_solver_add_spring(s, node, -1, k))",
+                      s->dm.nfloating, s->dm.floating_msg);
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
   for (int k = 0; k < nf; k++) s->nw.rhs[k] = -s->nw.R[k];

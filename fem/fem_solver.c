@@ -233,6 +233,8 @@ int fem_solver_element_stress(FemSolver *s, double *sigma, double *vm, double *l
 
 void fem_solver_stats(const FemSolver *s, FemSolverStats *st) { *st = s->st; }
 
+int fem_solver_floating_bodies(const FemSolver *s) { return s->dm.nfloating; }
+
 void fem_solver_destroy(FemSolver **ps) {
   if (!ps || !*ps) return;
   FemSolver *s = *ps;

@@ -46,6 +46,8 @@ typedef struct { /* fem_dofmap.c */
   int ngroups, *group_ptr, *group_elem; /* threaded assembly groups (fem_dofmap_partition) */
   int npairs_extra, cap_extra, *extra;  /* node pairs (A, B) beyond the elements' */
   int n_rebuilds;                       /* pattern rebuilds after setup */
+  int nfloating;                        /* bodies held by nothing (fem_dofmap.c) */
+  char floating_msg[400];
   FemLinSolver *lin;                    /* borrows the pattern: recreated with it */
 } FemDofMap;
 
