@@ -167,6 +167,14 @@ void fem_solver_set_domain_check(FemSolver *s, FemDomainCheck fn, void *ctx);
  * first tangent assembly rebuilds the pattern (FemSolverStats.n_pattern_rebuilds). */
 int fem_solver_add_spring(FemSolver *s, int a, int b, double k);
 
+/* Per-element data for the laws (e.g. a magnetisation vector): data [borrowed, must outlive the
+ * solves] ndata values per element, handed to the law as FemLawCtx.elem_data (fem_law.h). */
+int fem_solver_set_element_data(FemSolver *s, int ndata, const double *data);
+/* Committed history of element e [borrowed]: fem_element_nqp * nhist values (quadrature point
+ * q at q * nhist; e.g. the equivalent plastic strain of a plastic law), nhist [out]; NULL
+ * before setup. */
+const double *fem_solver_history(const FemSolver *s, int e, int *nhist);
+
 /* Bodies (connected parts of the model, contributors' pairs included) with no fixed dof and
  * no ground spring, found in setup (a WARN names them; a singular tangent then says so). */
 int fem_solver_floating_bodies(const FemSolver *s);

@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "sa_error.h"
@@ -52,6 +53,9 @@ static const SaParam mat_params[] = {
      "reinforcement ring Poisson's ratio"},
     {"ring_rho", SA_PARAM_REAL, P(ring_rho), "kg/m^3", "1300", 0, INFINITY, SA_MIN_OPEN, NULL,
      "reinforcement ring density"},
+    {"regions", SA_PARAM_STRING, P(regions), "-",
+     "silicone:silicone, strain_limit:limit, reinforcement:ring", 0, 0, 0, NULL,
+     "material set of each mesh region as region:set, set = silicone, limit or ring"},
 };
 #undef P
 #define P(f) offsetof(FemSolverCaseParams, f)
@@ -84,6 +88,39 @@ const SaParamTable fem_actuator_material_table = {"material", "fem",
 const SaParamTable fem_actuator_solver_table = {"solver", "fem", "FEM Newton and linear solver",
                                                 solver_params, SA_NPARAMS(solver_params)};
 
+/* The set the regions map gives region `name`: 0 silicone, 1 limit, 2 ring, -1 none, -2 bad
+ * syntax or set (bad [out] names the offending entry). */
+static int region_set(const char *map, const char *name, char *bad, size_t nbad) {
+  const char *sets[] = {"silicone", "limit", "ring"};
+  char buf[SA_STR_MAX];
+  snprintf(buf, sizeof buf, "%s", map);
+  int found = -1;
+  for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    while (*tok == ' ' || *tok == '\t') tok++;
+    char *colon = strchr(tok, ':');
+    char *end = tok + strlen(tok);
+    while (end > tok && (end[-1] == ' ' || end[-1] == '\t')) *--end = '\0';
+    if (!colon || colon == tok) {
+      snprintf(bad, nbad, "'%s' is not region:set", tok);
+      return -2;
+    }
+    char *r_end = colon;
+    while (r_end > tok && r_end[-1] == ' ') r_end--;
+    *r_end = '\0';
+    char *set = colon + 1;
+    while (*set == ' ') set++;
+    int k = -1;
+    for (int i = 0; i < 3; i++)
+      if (!strcmp(set, sets[i])) k = i;
+    if (k < 0) {
+      snprintf(bad, nbad, "set '%s' of region '%s' is not silicone, limit or ring", set, tok);
+      return -2;
+    }
+    if (name && !strcmp(tok, name)) found = k;
+  }
+  return found;
+}
+
 int fem_actuator_load(const SaCase *c, FemActuatorCase *a) {
   SA_CHECK(sa_params_load(&fem_actuator_mesh_table, c, &a->mesh));
   SA_CHECK(sa_params_load(&fem_actuator_material_table, c, &a->mat));
@@ -91,6 +128,9 @@ int fem_actuator_load(const SaCase *c, FemActuatorCase *a) {
   SA_REQUIRE(a->mesh.geo[0], SA_ERR_INPUT, "%s: [mesh] geo: no .geo file given", sa_case_path(c));
   SA_REQUIRE(strcmp(a->mat.model, "mooney_rivlin") || a->mat.c01 > 0, SA_ERR_INPUT,
              "%s: [material] c01 must be > 0 for model = mooney_rivlin", sa_case_path(c));
+  char bad[SA_STR_MAX];
+  SA_REQUIRE(region_set(a->mat.regions, NULL, bad, sizeof bad) != -2, SA_ERR_INPUT,
+             "%s: [material] regions: %s", sa_case_path(c), bad);
   return 0;
 }
 
@@ -114,22 +154,27 @@ int fem_actuator_mesh(const FemActuatorCase *a, FemMesh **m) {
 
 int fem_actuator_materials(const FemActuatorCase *a, const FemMesh *m, FemMaterial *mats) {
   const FemMatParams *p = &a->mat;
+  char bad[SA_STR_MAX];
   for (int r = 0; r < m->nregions; r++) {
     const char *name = m->region_names[r];
-    if (!strcmp(name, "silicone")) {
-      FemMaterial s = {.c10 = p->c10, .rho = p->rho};
-      if (!strcmp(p->model, "yeoh")) s.kind = FEM_MAT_YEOH, s.c20 = p->c20, s.c30 = p->c30;
-      else if (!strcmp(p->model, "mooney_rivlin")) s.kind = FEM_MAT_MOONEY_RIVLIN, s.c01 = p->c01;
-      else s.kind = FEM_MAT_NEOHOOKE;
-      s.kappa = p->kappa_ratio * fem_material_mu0(&s);
-      mats[r] = s;
-    } else if (!strcmp(name, "strain_limit")) {
-      mats[r] = fem_material_from_e_nu(p->limit_e, p->limit_nu, p->limit_rho);
-    } else if (!strcmp(name, "reinforcement")) {
-      mats[r] = fem_material_from_e_nu(p->ring_e, p->ring_nu, p->ring_rho);
+    int set = region_set(p->regions, name, bad, sizeof bad);
+    SA_REQUIRE(set != -2, SA_ERR_INPUT, "[material] regions: %s", bad);
+    SA_REQUIRE(set >= 0, SA_ERR_INPUT, "mesh region '%s' has no material: [material] regions = "
+               "%s names no set for it", name, p->regions);
+    if (set == 0) { /* the silicone law from the registry; kappa from kappa_ratio and mu0 */
+      const char *nm[4] = {"c10", NULL, NULL, "kappa"};
+      double v[4] = {p->c10, 0, 0, 1.0};
+      int n = 2;
+      if (!strcmp(p->model, "yeoh")) nm[1] = "c20", v[1] = p->c20, nm[2] = "c30", v[2] = p->c30, n = 4;
+      else if (!strcmp(p->model, "mooney_rivlin")) nm[1] = "c01", v[1] = p->c01, n = 3;
+      nm[n - 1] = "kappa", v[n - 1] = 1.0;
+      SA_CHECK(fem_material_from_law(p->model, n, nm, v, p->rho, &mats[r]));
+      mats[r].kappa = p->kappa_ratio * fem_material_mu0(&mats[r]);
     } else {
-      return SA_ERROR(SA_ERR_INPUT, "mesh region '%s' has no material (known: silicone, "
-                      "strain_limit, reinforcement)", name);
+      const char *nm[2] = {"e", "nu"};
+      double v[2] = {set == 1 ? p->limit_e : p->ring_e, set == 1 ? p->limit_nu : p->ring_nu};
+      SA_CHECK(fem_material_from_law("stiff_neohooke", 2, nm, v,
+                                     set == 1 ? p->limit_rho : p->ring_rho, &mats[r]));
     }
   }
   return 0;

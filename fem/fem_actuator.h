@@ -20,6 +20,7 @@ typedef struct {
   char model[SA_STR_MAX];
   double c10, c01, c20, c30, kappa_ratio, rho;
   double limit_e, limit_nu, limit_rho, ring_e, ring_nu, ring_rho;
+  char regions[SA_STR_MAX]; /* "region:set, ..." with set silicone | limit | ring */
 } FemMatParams;
 
 typedef struct {
@@ -45,8 +46,11 @@ int fem_actuator_load(const SaCase *c, FemActuatorCase *a);
 void fem_actuator_write_resolved(const FemActuatorCase *a, FILE *f);
 /* Generate the mesh (Gmsh) of a [in]: *m [owned]. */
 int fem_actuator_mesh(const FemActuatorCase *a, FemMesh **m);
-/* Material of every region of m [in] from a [in]: mats [out] m->nregions entries. Regions:
- * silicone, strain_limit, reinforcement; any other name is an input error. */
+/* Material of every region of m [in] from a [in]: mats [out] m->nregions entries. Which
+ * material set (silicone: the law `model` with c10..c30, kappa_ratio, rho; limit and ring:
+ * stiff neo-Hookean from E, nu, rho) a region gets is the case's [material] regions map
+ * (default "silicone:silicone, strain_limit:limit, reinforcement:ring"); a region it does not
+ * name is an input error. The laws come from the law registry (fem_law.h). */
 int fem_actuator_materials(const FemActuatorCase *a, const FemMesh *m, FemMaterial *mats);
 /* Solver parameters of a [in]; run_threads is used when [solver] threads = 0. */
 FemSolverParams fem_actuator_solver_params(const FemActuatorCase *a, int run_threads);

@@ -210,8 +210,10 @@ static void elem_work(FemSolver *s, AsmBuf *bf, int e, const double *x, int want
       xe[3 * a + k] = x[3 * c[a] + k];
     }
   int r = m->region ? m->region[e] : 0;
-  int rc = fem_element_tl(m->etype, X, xe, &s->mats[r], s->as.hist_c + s->as.hoff[e],
-                          bf->hist + s->as.hoff[e], want_K, &out);
+  FemLawCtx lc = {s->as.t_eval, s->as.dt_eval, e, -1,
+                  s->as.edata ? s->as.edata + (size_t)e * s->as.nedata : NULL};
+  int rc = fem_element_tl_ctx(m->etype, X, xe, &s->mats[r], &lc, s->as.hist_c + s->as.hoff[e],
+                              bf->hist + s->as.hoff[e], want_K, &out);
   if (rc != 0 || !isfinite(out.energy)) {
     if (rc == SA_ERR_DOMAIN) (*n_dom)++;
     else (*n_inv)++;
@@ -357,6 +359,17 @@ int fem_asm_setup(FemSolver *s) {
   SA_CALLOC(as->hist_c, as->hoff[ne]);
   SA_CALLOC(as->hist_t, as->hoff[ne]);
   SA_CALLOC(as->rb.hist, as->hoff[ne]);
+  /* history starts where each law says (zeros without an init hook) */
+  for (int e = 0; e < ne; e++) {
+    const FemMaterial *mt = &s->mats[m->region ? m->region[e] : 0];
+    if (!mt->law || !mt->law->init_hist || !mt->nhist) continue;
+    for (int q = 0; q < s->nqp; q++) {
+      size_t o = (size_t)as->hoff[e] + (size_t)q * mt->nhist;
+      mt->law->init_hist(mt->par, as->hist_c + o);
+      memcpy(as->hist_t + o, as->hist_c + o, (size_t)mt->nhist * sizeof *as->hist_c);
+      memcpy(as->rb.hist + o, as->hist_c + o, (size_t)mt->nhist * sizeof *as->hist_c);
+    }
+  }
   double **v[] = {&as->fint, &as->q, &as->gv, &as->fdead, &as->rb.fint, &as->rb.q, &as->rb.gv};
   for (size_t i = 0; i < sizeof v / sizeof *v; i++) SA_CALLOC(*v[i], nd);
   if (as->ncontrib) {
@@ -383,4 +396,19 @@ void fem_asm_free(FemAssembly *as) {
                as->fdead, as->val, as->mlump, as->rb.fint, as->rb.q, as->rb.gv, as->rb.fcon,
                as->rb.val, as->rb.hist, as->contrib, as->missing, as->spring_nodes, as->spring_k};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
+}
+
+int fem_solver_set_element_data(FemSolver *s, int ndata, const double *data) {
+  SA_REQUIRE(ndata >= 0 && (ndata == 0 || data), SA_ERR_INPUT, "element data: %d values per "
+             "element without data", ndata);
+  s->as.nedata = ndata;
+  s->as.edata = ndata ? data : NULL;
+  return 0;
+}
+
+const double *fem_solver_history(const FemSolver *s, int e, int *nhist) {
+  if (!s->setup_done || e < 0 || e >= s->m->nelem) return NULL;
+  const FemMaterial *mt = &s->mats[s->m->region ? s->m->region[e] : 0];
+  if (nhist) *nhist = mt->nhist;
+  return s->as.hist_c + s->as.hoff[e];
 }

@@ -25,6 +25,7 @@
 
 #include "fem_kernel_quad.h"
 #include "fem_kernel_tensor.h"
+#include "fem_law.h"
 #include "sa_error.h"
 
 static const FemKqRule *tet_rule(FemElemType t, const double *X)
@@ -77,6 +78,22 @@ static void def_grad(int nen, const double *x, const double G[][3], double F[9])
 int fem_element_tl(FemElemType t, const double *X, const double *x, const FemMaterial *mat,
                    const double *hist_old, double *hist_new, int want_K, FemElemOut *out)
 {
+  return fem_element_tl_ctx(t, X, x, mat, NULL, hist_old, hist_new, want_K, out);
+}
+
+/* The region's law at one quadrature point: a law object, or the built-in kinds directly. */
+static inline int law_eval(const FemMaterial *mat, const FemLawCtx *lc, const double F[9],
+                           const double *ho, double *hn, double *W, double P[9], double A[81])
+{
+  if (mat->law) return mat->law->eval(mat->par, lc, F, ho, hn, W, P, A);
+  return fem_material_eval_iso(mat, F, ho, hn, W, P, A);
+}
+
+int fem_element_tl_ctx(FemElemType t, const double *X, const double *x, const FemMaterial *mat,
+                       const FemLawCtx *ctx, const double *hist_old, double *hist_new,
+                       int want_K, FemElemOut *out)
+{
+  FemLawCtx lc = ctx ? *ctx : (FemLawCtx){0.0, 0.0, -1, -1, NULL};
   const int nen = (int)t, ndof = 3 * nen, nh = mat->nhist;
   const FemKqRule *R = tet_rule(t, X);
   const int nq = R->n;
@@ -109,8 +126,9 @@ int fem_element_tl(FemElemType t, const double *X, const double *x, const FemMat
     const double *F = Fq[q], w = wq[q];
     const double(*Gq)[3] = (const double(*)[3])G[q];
     double W, P[9], A[81], cof[9], H[9];
-    SA_CHECK(fem_material_eval_iso(mat, F, nh ? hist_old + q * nh : NULL,
-                                   nh ? hist_new + q * nh : NULL, &W, P, want_K ? A : NULL));
+    lc.qp = q;
+    SA_CHECK(law_eval(mat, &lc, F, nh ? hist_old + q * nh : NULL, nh ? hist_new + q * nh : NULL,
+                      &W, P, want_K ? A : NULL));
     double dJ = Jq[q] - theta, pq = dU + ks * dJ; /* quadrature-point pressure */
     energy += w * (W + 0.5 * ks * dJ * dJ);
     fem_kt_cof(F, cof); /* J H */
@@ -193,8 +211,9 @@ int fem_element_stress(FemElemType t, const double *X, const double *x, const Fe
   for (int i = 0; i < 9; i++) sigma[i] = 0;
   for (int q = 0; q < R->n; q++) {
     double W, P[9];
-    SA_CHECK(fem_material_eval_iso(mat, Fq[q], nh ? hist + q * nh : NULL, nh ? scratch : NULL,
-                                   &W, P, NULL));
+    FemLawCtx lc = {0.0, 0.0, -1, q, NULL};
+    SA_CHECK(law_eval(mat, &lc, Fq[q], nh ? hist + q * nh : NULL, nh ? scratch : NULL, &W, P,
+                      NULL));
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 3; j++) {
         double s = 0;

@@ -16,6 +16,8 @@
  * (tests/fem/kernels/test_fem_locking.c). Because U(J) = (kappa/2)(J - 1)^2 is quadratic,
  * kappa_s = kappa gives exactly the displacement element: compressible laws (the stiff parts,
  * kappa = 2.2 mu) get it automatically.
+ * A region whose law (fem_law.h) is of kind FEM_LAW_FULL has kappa = kappa_s = 0 here: the
+ * law's own P (pressure included) in the displacement formulation.
  * Quadrature: tet4 1 point; straight-sided tet10 4 points (degree 2); curved tet10 (a mid-node
  * off its edge midpoint) 8 points (degree 3), because grad N det J0 is then cubic and the
  * 4-point rule would fail the patch test (see fem_kernel_quad.h).
@@ -25,6 +27,7 @@
 #ifndef FEM_ELEMENT_H
 #define FEM_ELEMENT_H
 
+#include "fem_law.h"
 #include "fem_material.h"
 #include "fem_mesh.h"
 
@@ -45,6 +48,11 @@ typedef struct {
  * SA_ERR_INPUT for a degenerate reference element. Thread-safe, allocation-free. */
 int fem_element_tl(FemElemType t, const double *X, const double *x, const FemMaterial *mat,
                    const double *hist_old, double *hist_new, int want_K, FemElemOut *out);
+/* The same with the law context ctx [in] (time, time step, element, per-element data; the
+ * quadrature point is filled in here; NULL: zeros). */
+int fem_element_tl_ctx(FemElemType t, const double *X, const double *x, const FemMaterial *mat,
+                       const FemLawCtx *ctx, const double *hist_old, double *hist_new,
+                       int want_K, FemElemOut *out);
 /* Quadrature points per element to allocate history for (the stride of hist_old/hist_new per
  * element): 1 for tet4, 8 for tet10 (straight-sided tet10 use only the first 4). */
 int fem_element_nqp(FemElemType t);

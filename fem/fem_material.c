@@ -17,15 +17,18 @@
 #include <stddef.h>
 
 #include "fem_kernel_tensor.h"
+#include "fem_law.h"
 #include "sa_error.h"
 
 double fem_material_mu0(const FemMaterial *m)
 {
+  if (m->law) return m->law->mu0 ? m->law->mu0(m->par) : 0.0;
   return 2 * (m->c10 + (m->kind == FEM_MAT_MOONEY_RIVLIN ? m->c01 : 0));
 }
 
 double fem_material_kappa_fluct(const FemMaterial *m)
 {
+  if (m->law && m->law->kind == FEM_LAW_FULL) return 0.0; /* displacement formulation */
   double a = m->mix_alpha == 0 ? FEM_MAT_MIX_ALPHA_DEFAULT : m->mix_alpha;
   if (a < 0) return 0;
   double k = a * fem_material_mu0(m);
@@ -42,8 +45,24 @@ FemMaterial fem_material_from_e_nu(double E, double nu, double rho)
   return m;
 }
 
+static int check_law(const FemMaterial *m)
+{
+  const FemLaw *L = m->law;
+  SA_REQUIRE(m->nhist == L->nhist, SA_ERR_INPUT, "material of law '%s': nhist %d, the law has %d",
+             L->name, m->nhist, L->nhist);
+  SA_REQUIRE(m->rho >= 0, SA_ERR_INPUT, "material: rho = %g must be >= 0", m->rho);
+  if (L->kind == FEM_LAW_ISOCHORIC) {
+    SA_REQUIRE(m->kappa > 0, SA_ERR_INPUT, "law '%s': kappa = %g must be > 0", L->name, m->kappa);
+    SA_REQUIRE(fem_material_mu0(m) > 0, SA_ERR_INPUT, "law '%s': initial shear modulus %g must "
+               "be > 0", L->name, fem_material_mu0(m));
+  }
+  if (L->check) SA_CHECK(L->check(m->par));
+  return 0;
+}
+
 int fem_material_check(const FemMaterial *m)
 {
+  if (m->law) return check_law(m);
   SA_REQUIRE(m->kind >= FEM_MAT_NEOHOOKE && m->kind <= FEM_MAT_STIFF_NEOHOOKE, SA_ERR_INPUT,
              "unknown material kind %d", (int)m->kind);
   SA_REQUIRE(m->c10 > 0, SA_ERR_INPUT, "material: c10 = %g must be > 0", m->c10);
@@ -58,13 +77,13 @@ int fem_material_check(const FemMaterial *m)
 
 int fem_material_symmetric(const FemMaterial *m)
 {
-  (void)m; /* every law so far is hyperelastic */
-  return 1;
+  return m->law ? m->law->symmetric : 1; /* every built-in law is hyperelastic */
 }
 
 void fem_material_eval_vol(const FemMaterial *m, double J, double *U, double *dU, double *d2U)
 {
-  double k = m->kappa;
+  /* a full-stress law carries its own pressure */
+  double k = (m->law && m->law->kind == FEM_LAW_FULL) ? 0.0 : m->kappa;
   if (U) *U = 0.5 * k * (J - 1) * (J - 1);
   if (dU) *dU = k * (J - 1);
   if (d2U) *d2U = k;

@@ -27,7 +27,15 @@ typedef enum {
   FEM_MAT_STIFF_NEOHOOKE /* from E, nu */
 } FemMaterialKind;
 
+struct FemLaw;
+
 typedef struct {
+  /* A law object (fem_law.h) with its parameter values par; NULL for the built-in kinds below
+   * (the fields kind, c10 ... c30 then select and parameterise the law). For a law of kind
+   * FEM_LAW_ISOCHORIC, kappa (and mix_alpha) still define the mixed volumetric part; nhist is
+   * the law's. */
+  const struct FemLaw *law;
+  double par[16];            /* FEM_LAW_MAX_PARAMS */
   FemMaterialKind kind;
   double c10, c01, c20, c30; /* [Pa] */
   double kappa;              /* bulk modulus [Pa] */
@@ -49,6 +57,14 @@ double fem_material_mu0(const FemMaterial *m);
 double fem_material_kappa_fluct(const FemMaterial *m);
 /* Build a stiff law from Young's modulus and Poisson's ratio. */
 FemMaterial fem_material_from_e_nu(double E, double nu, double rho);
+
+/* Material of the registered law `name` (fem_law.h) with nvals parameters given by names [in]
+ * and values [in] (every parameter of the law exactly once) and density rho. The built-in laws
+ * (neohooke, mooney_rivlin, yeoh, stiff_neohooke) give the built-in kinds, exactly the
+ * materials built by hand; "kappa" sets the bulk modulus of an isochoric law. SA_ERR_INPUT
+ * naming an unknown law or a missing/unknown parameter. */
+int fem_material_from_law(const char *name, int nvals, const char *const *names,
+                          const double *values, double rho, FemMaterial *out);
 
 /* Validate parameters: SA_ERR_INPUT naming the bad one (mu0 <= 0, kappa <= 0, C10 <= 0 ...). */
 int fem_material_check(const FemMaterial *m);

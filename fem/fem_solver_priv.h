@@ -66,6 +66,9 @@ typedef struct { /* fem_assemble.c */
   int need_rebuild;        /* a contributor asked for a pair outside the pattern */
   int *missing;            /* those pairs (2 per pair) */
   int nmissing, cap_missing;
+  double t_eval, dt_eval;    /* time and time step of the state being assembled (laws) */
+  const double *edata;       /* per-element law data [borrowed], nedata per element */
+  int nedata;
   int nsprings, cap_springs; /* built-in spring contributor */
   int *spring_nodes;         /* 2 per spring */
   double *spring_k;
