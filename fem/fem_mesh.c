@@ -886,6 +886,87 @@ int fem_mesh_quality(const FemMesh *m, int region, double *qmin, double *qmean)
   return worst;
 }
 
+int fem_mesh_add_surface_side(FemMesh *m, const char *surface, const char *region,
+                              const char *name)
+{
+  const FemSurface *S = fem_mesh_find_surface(m, surface);
+  SA_REQUIRE(S, SA_ERR_INPUT, "mesh %s has no surface '%s'", m->source, surface);
+  int r = fem_mesh_find_region(m, region);
+  SA_REQUIRE(r >= 0, SA_ERR_INPUT, "mesh %s has no region '%s'", m->source, region);
+  SA_REQUIRE(name && name[0] && strlen(name) < 64 && !fem_mesh_find_surface(m, name),
+             SA_ERR_INPUT, "surface name '%s' empty, too long or taken", name ? name : "");
+  int nfn = S->nfn, nf = S->nfaces, ne = m->nelem, nen = m->nen;
+  int *faces = malloc(sizeof(int) * (size_t)nfn * (nf ? nf : 1));
+  int *fel = malloc(sizeof(int) * (size_t)(nf ? nf : 1));
+  int *nodes = malloc(sizeof(int) * (size_t)(S->nnodes ? S->nnodes : 1));
+  /* corner node -> elements */
+  int *ptr = calloc((size_t)m->nnodes + 1, sizeof *ptr), *lst = malloc(sizeof(int) * 4 * (size_t)ne);
+  int rc = (faces && fel && nodes && ptr && lst) ? 0 : SA_ERROR(SA_ERR_MEMORY, "surface side");
+  if (!rc) {
+    for (int e = 0; e < ne; ++e)
+      for (int a = 0; a < 4; ++a) ptr[m->conn[(size_t)e * nen + a] + 1]++;
+    for (int i = 0; i < m->nnodes; ++i) ptr[i + 1] += ptr[i];
+    int *fill = calloc((size_t)m->nnodes, sizeof *fill);
+    if (!fill) rc = SA_ERROR(SA_ERR_MEMORY, "surface side");
+    for (int e = 0; e < ne && !rc; ++e)
+      for (int a = 0; a < 4; ++a) {
+        int A = m->conn[(size_t)e * nen + a];
+        lst[ptr[A] + fill[A]++] = e;
+      }
+    free(fill);
+  }
+  for (int k = 0; k < nf && !rc; ++k) {
+    const int *f = S->faces + (size_t)k * nfn;
+    int *g = faces + (size_t)k * nfn, e0 = S->face_elem[k];
+    if (m->region[e0] == r) { /* already oriented out of this region's element */
+      memcpy(g, f, sizeof(int) * (size_t)nfn);
+      fel[k] = e0;
+      continue;
+    }
+    int other = -1; /* the element across the face: it holds the three corners too */
+    for (int t = ptr[f[0]]; t < ptr[f[0] + 1] && other < 0; ++t) {
+      int e = lst[t], hit = 0;
+      if (e == e0) continue;
+      for (int a = 0; a < 4; ++a) {
+        int A = m->conn[(size_t)e * nen + a];
+        hit += (A == f[1]) + (A == f[2]);
+      }
+      if (hit == 2) other = e;
+    }
+    if (other < 0 || m->region[other] != r) {
+      rc = SA_ERROR(SA_ERR_INPUT, "surface '%s' face %d does not bound region '%s'", surface, k,
+                    region);
+      break;
+    }
+    /* reversed orientation: corners (0, 2, 1); tri6 mid-nodes of edges 02, 21, 10 */
+    g[0] = f[0], g[1] = f[2], g[2] = f[1];
+    if (nfn == 6) g[3] = f[5], g[4] = f[4], g[5] = f[3];
+    fel[k] = other;
+  }
+  int nnodes = S->nnodes;
+  if (!rc) memcpy(nodes, S->nodes, sizeof(int) * (size_t)nnodes);
+  /* S points into m->surfaces: not used after this realloc */
+  FemSurface *sv = rc ? NULL : realloc(m->surfaces, sizeof *sv * (size_t)(m->nsurfaces + 1));
+  if (!rc && !sv) rc = SA_ERROR(SA_ERR_MEMORY, "surface side");
+  free(ptr);
+  free(lst);
+  if (rc) {
+    free(faces), free(fel), free(nodes);
+    return rc;
+  }
+  m->surfaces = sv;
+  FemSurface *ns = &m->surfaces[m->nsurfaces++];
+  memset(ns, 0, sizeof *ns);
+  snprintf(ns->name, sizeof ns->name, "%s", name);
+  ns->nfaces = nf;
+  ns->nfn = nfn;
+  ns->faces = faces;
+  ns->face_elem = fel;
+  ns->nnodes = nnodes;
+  ns->nodes = nodes;
+  return 0;
+}
+
 void fem_mesh_destroy(FemMesh **pm)
 {
   if (!pm || !*pm) return;

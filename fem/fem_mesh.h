@@ -67,6 +67,12 @@ const FemSurface *fem_mesh_find_surface(const FemMesh *m, const char *name);
 /* Require named groups: SA_ERR_INPUT naming the missing one and the groups present. */
 int fem_mesh_require(const FemMesh *m, int nregions, const char *const *regions, int nsurfaces,
                      const char *const *surfaces);
+/* Several bodies / an interface: add surface `name` [owned by m] made of the faces of
+ * `surface` oriented out of the elements of `region` (a 2-D group on an interface is stored
+ * with the lower-numbered element's orientation; this selects the side). SA_ERR_INPUT when a
+ * face does not bound the region. */
+int fem_mesh_add_surface_side(FemMesh *m, const char *surface, const char *region,
+                              const char *name);
 /* Total reference volume of a region (-1 = all). */
 double fem_mesh_volume(const FemMesh *m, int region);
 /* Shape quality of the corner tets of a region (-1 = all): radius ratio 3 r_in / r_circ

@@ -15,7 +15,9 @@
  *    pattern, rebuilds once (n_pattern_rebuilds == 1) and gives the same displacements as 1
  *    (to 1e-12 relative: same equations, same pattern);
  * 3. without springs B is a floating body: setup says so (fem_solver_floating_bodies == 1), and
- *    ground springs (b = -1) on B make it held (0). */
+ *    ground springs (b = -1) on B make it held (0);
+ * 4. an interface surface between two regions, selected by side (fem_mesh_add_surface_side):
+ *    outward normals of each side point out of its region (tri6 mid-nodes follow). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -163,6 +165,44 @@ int main(void) {
   if (fem_solver_floating_bodies(s3) != 0) fprintf(stderr, "ground springs ignored\n"), fails++;
   TU_CHECK(fem_solver_solve(s3)); /* no load: must solve (weak springs hold B) */
   fem_solver_destroy(&s3);
+
+  /* 4. an interface surface selected by side: two blocks sharing the face x = 1 (merged
+   *    nodes), regions a and b; the group is stored oriented out of a (+x) */
+  smesh_free(&m);
+  double x0c = 1.0;
+  SmeshBlock blk2[2] = {
+      {{3, 2, 2}, map_bar, &x0a, {NULL, "iface", NULL, NULL, NULL, NULL}},
+      {{3, 2, 2}, map_bar, &x0c, {NULL, NULL, NULL, NULL, NULL, NULL}}};
+  TU_CHECK(smesh_build(2, blk2, 2, 1e-9, &m));
+  char(*rn)[64] = realloc(m->region_names, 2 * sizeof *rn);
+  if (!rn) return 1;
+  m->region_names = rn;
+  strcpy(rn[0], "a"), strcpy(rn[1], "b");
+  m->nregions = 2;
+  for (int e = 0; e < m->nelem; e++) {
+    double xc = 0;
+    for (int a = 0; a < 4; a++) xc += 0.25 * m->xyz[3 * m->conn[(size_t)e * m->nen + a]];
+    m->region[e] = xc > 1.0;
+  }
+  TU_CHECK(fem_mesh_add_surface_side(m, "iface", "b", "iface_b"));
+  TU_CHECK(fem_mesh_add_surface_side(m, "iface", "a", "iface_a"));
+  for (int side = 0; side < 2; side++) {
+    const FemSurface *f = fem_mesh_find_surface(m, side ? "iface_b" : "iface_a");
+    int bad = f->nfaces == 0;
+    for (int k = 0; k < f->nfaces; k++) {
+      const int *c = f->faces + (size_t)k * f->nfn;
+      const double *p0 = m->xyz + 3 * c[0], *p1 = m->xyz + 3 * c[1], *p2 = m->xyz + 3 * c[2];
+      double nx = (p1[1] - p0[1]) * (p2[2] - p0[2]) - (p1[2] - p0[2]) * (p2[1] - p0[1]);
+      if ((side ? -nx : nx) <= 0 || m->region[f->face_elem[k]] != side) bad = 1;
+      /* mid-node 3 lies on edge 01 */
+      for (int i = 0; i < 3; i++)
+        if (fabs(m->xyz[3 * c[3] + i] - 0.5 * (p0[i] + p1[i])) > 1e-12) bad = 1;
+    }
+    if (bad) fprintf(stderr, "interface side %s: wrong orientation or element\n", side ? "b" : "a"), fails++;
+  }
+  sa_error_clear();
+  if (fem_mesh_add_surface_side(m, "clampA", "b", "x") == 0) fails++; /* no such surface */
+  sa_error_clear();
 
   free(Aend);
   free(Aload);
