@@ -448,7 +448,8 @@ static void scene_title(const HmsaScene *s, char *buf, size_t n) {
     snprintf(t, sizeof t, "b^2 = σ b_a^2 sin^2(Ωτ), b_a = %g", m->b_a);
     join(buf, n, t);
   } else {
-    snprintf(t, sizeof t, "b^2 = %g %+g sin(Ωτ)", m->b2_dc, m->b2_ac);
+    snprintf(t, sizeof t, "b^2 = %g %c %g sin(Ωτ)", m->b2_dc, m->b2_ac < 0 ? '-' : '+',
+             fabs(m->b2_ac));
     join(buf, n, t);
   }
   if (m->loading != HMSA_LOAD_CONST && !sweep) {
