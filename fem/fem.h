@@ -8,8 +8,12 @@
  *
  * Lifecycle (handle first, outputs last; destroy accepts NULL):
  *   fem_solver_create(mesh, mats, params)       mesh [borrowed], mats [in] copied, one per region
+ *                                               (laws: fem_law.h; mesh and laws are validated)
  *   fem_solver_fix_surface / fix_nodes / add_pressure_surface / set_gravity      (before setup)
- *   fem_solver_setup                            ALL symbolic work and every allocation
+ *   fem_solver_add_spring / add_contributor (fem_contrib.h) / set_domain_check   (any time)
+ *   fem_solver_setup                            ALL symbolic work and every allocation (a
+ *                                               contributor pair outside the pattern later
+ *                                               rebuilds it once: FemSolverStats)
  *   loop: set_pressure | set_volume | set_nodal_forces | set_prescribed -> solve | step_dynamic
  *         -> positions / velocities / pressure / cavity_volume
  *   fem_solver_destroy(&s)

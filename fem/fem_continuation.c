@@ -191,7 +191,9 @@ int fem_cont_ramp(FemSolver *s, int dynamic, double dt_total) {
     s->ct.rep.last_dl = dl;
     if (rc == 0) {
       commit_substep(s, sk.dt);
-      if (iters > 0) { /* else the factors are still those of the state before */
+      /* iters == 0: the factors are still those of the state before; none after a pattern
+       * rebuild in the last assembly */
+      if (iters > 0 && s->nw.have_factors) {
         s->nw.fact_converged = 1;
         s->nw.fact_dynamic = sk.dynamic;
         s->nw.fact_dt = sk.dt;

@@ -375,7 +375,7 @@ int fem_dofmap_rebuild(FemSolver *s, int npairs, const int *pairs) {
   SA_CALLOC(s->as.val, s->dm.nnz);
   free(s->as.rb.val);
   s->as.rb.val = NULL;
-  s->nw.fact_converged = 0; /* the factors went with the old solver */
+  s->nw.fact_converged = s->nw.have_factors = 0; /* the factors went with the old solver */
   s->dm.n_rebuilds++;
   FemLinInfo li;
   fem_linsolve_info(s->dm.lin, &li);

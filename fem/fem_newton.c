@@ -99,6 +99,7 @@ static int factorize(FemSolver *s, const StepKind *sk) {
     s->st.n_chol++;
   }
   s->nw.last_sym = (rc == 0 && li.kind == FEM_LIN_CHOLMOD);
+  s->nw.have_factors = rc == 0;
   return rc;
 }
 

@@ -86,6 +86,7 @@ typedef struct { /* fem_newton.c */
    * iteration), made for a substep of kind (fact_dynamic, fact_dt, fact_alpha): usable as
    * the next predictor (FEM_PREDICT_REUSE) */
   int fact_converged;
+  int have_factors; /* lin holds factors (cleared when a pattern rebuild recreates it) */
   int fact_dynamic;
   double fact_dt, fact_alpha;
   FemNewtonReason reason; /* of the last substep */
