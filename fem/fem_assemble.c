@@ -339,9 +339,10 @@ int fem_asm_readback(FemSolver *s, int want_K) {
   AsmBuf *bf = &s->as.rb;
   if (want_K && !bf->val) SA_CALLOC(bf->val, s->dm.nnz);
   int rc = fem_asm_into(s, bf, s->x, s->p, want_K);
+  if (rc < 0) return sa_error_push(rc, __func__, __FILE__, __LINE__);
   if (rc) sa_error_clear();
-  SA_REQUIRE(rc >= 0, SA_ERR_NUMERICAL, "inverted elements in the converged state");
-  SA_REQUIRE(rc == 0, SA_ERR_NUMERICAL, "inverted elements in the converged state");
+  SA_REQUIRE(rc == 0, SA_ERR_NUMERICAL, "%s in the converged state",
+             rc == SA_ERR_DOMAIN ? "law or contributor outside its domain" : "inverted elements");
   return 0;
 }
 
