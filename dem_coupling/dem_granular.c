@@ -63,7 +63,7 @@ typedef struct {
   /* coupling step averages */
   double F_mesh[N_MESH][3];
   double angle, piston_force, overlap, balance, phi, phi0, V_bed0, wall_fz, barrel_fz;
-  int newton;
+  int newton, dynamic;
   /* outputs */
   SaCsv *csv;
   SaVtkSeries *vtk_fem, *vtk_grains;
@@ -85,11 +85,18 @@ static int setup_fem(Run *g) {
   SA_REQUIRE(g->mats, SA_ERR_MEMORY, "materials");
   SA_CHECK(fem_actuator_materials(&sc->act, g->m, g->mats));
   FemSolverParams prm = fem_actuator_solver_params(&sc->act, g->run->threads);
+  prm.mass_damping = cc->damping;
   SA_CHECK(fem_solver_create(g->m, g->mats, &prm, &g->s));
   SA_CHECK(fem_solver_fix_surface(g->s, cc->fixed_surface, FEM_XYZ));
   SA_CHECK(fem_solver_add_pressure_surface(g->s, cc->wall_surface)); /* volume only, p = 0 */
   if (cc->gravity) SA_CHECK(fem_solver_set_gravity(g->s, (const double[3]){0, 0, -G_ACC}));
   SA_CHECK(fem_solver_setup(g->s));
+  /* the actuator hangs under its own weight before the grains are poured into it */
+  if (cc->gravity) {
+    double t0 = sa_time_now();
+    SA_CHECK(fem_solver_solve(g->s));
+    g->t_fem += sa_time_now() - t0;
+  }
   const char *wall[] = {cc->wall_surface};
   SA_CHECK(fem_coupling_surface_create(g->m, 1, wall, &g->cs));
   g->nv = fem_coupling_surface_nverts(g->cs);
@@ -101,7 +108,7 @@ static int setup_fem(Run *g) {
   g->f_node = calloc(v3, sizeof(double)), g->f_app = calloc(v3, sizeof(double));
   SA_REQUIRE(g->xw_prev && g->xw_cur && g->xw && g->vw && g->f_tri && g->f_sum && g->f_node &&
              g->f_app, SA_ERR_MEMORY, "coupling buffers");
-  fem_coupling_surface_gather(g->cs, g->m->xyz, g->xw_cur);
+  fem_coupling_surface_gather(g->cs, fem_solver_positions(g->s), g->xw_cur);
   memcpy(g->xw_prev, g->xw_cur, sizeof(double) * v3);
   memcpy(g->xw, g->xw_cur, sizeof(double) * v3);
   g->V0 = fem_solver_cavity_volume(g->s);
@@ -368,6 +375,7 @@ static int dem_step(Run *g, double z0, double v, double T) {
   for (int k = 0; k < N_MESH; k++) g->F_mesh[k][0] = g->F_mesh[k][1] = g->F_mesh[k][2] = 0;
   memset(g->f_sum, 0, sizeof(double) * 3 * (size_t)g->nt);
   for (int k = 0; k < 3 * g->nv; k++) g->vw[k] = (g->xw_cur[k] - g->xw_prev[k]) / T;
+  if (getenv("SOFTACT_DEM_NO_WALL_VEL")) memset(g->vw, 0, sizeof(double) * 3 * (size_t)g->nv);
   double t = 0;
   for (long done = 0; done < nsteps;) {
     int n = nsteps - done < chunk ? (int)(nsteps - done) : chunk;
@@ -403,8 +411,37 @@ static int dem_step(Run *g, double z0, double v, double T) {
   }
   for (int m = 0; m < N_MESH; m++)
     for (int d = 0; d < 3; d++) g->F_mesh[m][d] /= nsamp;
-  double fabs_sum = 0;
+  double fabs_sum = 0, pull = 0, push = 0;
   for (int k = 0; k < 3 * g->nt; k++) fabs_sum += fabs(g->f_sum[k]);
+  for (int t = 0; t < g->nt; t++) {
+    double n[3];
+    fem_coupling_surface_tri_area(g->cs, g->xw, t, n);
+    double fn = g->f_sum[3 * t] * n[0] + g->f_sum[3 * t + 1] * n[1] + g->f_sum[3 * t + 2] * n[2];
+    if (fn > 0) pull += fn; else push -= fn;
+  }
+  sa_log(SA_LOG_DEBUG, "dem", "wall normal forces: pushing %.4g N, pulling %.4g N", push, pull);
+  if (sa_log_get_level() >= SA_LOG_DEBUG) {
+    double fx[9] = {0}, ux[9] = {0};
+    int cnt[9] = {0};
+    const int *tri = fem_coupling_surface_triangles(g->cs);
+    for (int t = 0; t < g->nt; t++) {
+      double zc = 0, dx = 0;
+      for (int j = 0; j < 3; j++) {
+        int v = tri[3 * t + j];
+        zc += g->xw[3 * v + 2] / 3;
+        dx += (g->xw_cur[3 * v] - g->m->xyz[3 * fem_coupling_surface_nodes(g->cs)[v]]) / 3;
+      }
+      int b = (int)floor(-zc / 10e-3);
+      b = b < 0 ? 0 : b > 8 ? 8 : b;
+      fx[b] += g->f_sum[3 * t], ux[b] += dx, cnt[b]++;
+    }
+    char line[512];
+    int k = 0;
+    for (int b = 0; b < 9; b++)
+      k += snprintf(line + k, sizeof line - k, " [%d] %.3f/%.3f", b, fx[b],
+                    cnt[b] ? 1e3 * ux[b] / cnt[b] : 0.0);
+    sa_log(SA_LOG_DEBUG, "dem", "x-force [N] / mean x-displacement [mm] per 10 mm slab:%s", line);
+  }
   sa_log(SA_LOG_DEBUG, "dem", "step forces: wall (%.4g, %.4g, %.4g) N, sum|f| %.4g N; barrel "
          "(%.4g, %.4g, %.4g) N; piston (%.4g, %.4g, %.4g) N", g->F_mesh[0][0], g->F_mesh[0][1],
          g->F_mesh[0][2], fabs_sum, g->F_mesh[1][0], g->F_mesh[1][1], g->F_mesh[1][2],
@@ -412,8 +449,9 @@ static int dem_step(Run *g, double z0, double v, double T) {
   return 0;
 }
 
-/* Averaged wall forces -> relaxed FEM loads -> FEM solve -> new wall position. */
-static int fem_step(Run *g) {
+/* Averaged wall forces -> relaxed FEM loads -> FEM step of length T (implicit dynamic or static
+ * equilibrium) -> new wall position. */
+static int fem_step(Run *g, double T) {
   double t0 = sa_time_now();
   fem_coupling_surface_scatter(g->cs, g->f_sum, g->f_node);
   double w = g->sc->coupling.relaxation;
@@ -422,7 +460,7 @@ static int fem_step(Run *g) {
   memcpy(g->xw_prev, g->xw_cur, sizeof(double) * 3 * (size_t)g->nv);
   g->t_exchange += sa_time_now() - t0;
   t0 = sa_time_now();
-  int rc = fem_solver_solve(g->s);
+  int rc = g->dynamic ? fem_solver_step_dynamic(g->s, T) : fem_solver_solve(g->s);
   g->t_fem += sa_time_now() - t0;
   FemSolveReport rep;
   fem_solver_report(g->s, &rep);
@@ -431,7 +469,36 @@ static int fem_step(Run *g) {
     sa_log(SA_LOG_ERROR, "dem", "FEM solve failed: %s", rep.reason);
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
-  fem_coupling_surface_gather(g->cs, fem_solver_positions(g->s), g->xw_cur);
+  if (!getenv("SOFTACT_DEM_FREEZE_WALL"))
+    fem_coupling_surface_gather(g->cs, fem_solver_positions(g->s), g->xw_cur);
+  if (sa_log_get_level() >= SA_LOG_DEBUG) {
+    int kf = 0, ku = 0;
+    double fm = 0, um = 0;
+    for (int i = 0; i < g->nv; i++) {
+      double f = hypot(hypot(g->f_app[3 * i], g->f_app[3 * i + 1]), g->f_app[3 * i + 2]);
+      double u = 0;
+      for (int d = 0; d < 3; d++)
+        u += pow(g->xw_cur[3 * i + d] - g->m->xyz[3 * fem_coupling_surface_nodes(g->cs)[i] + d], 2);
+      u = sqrt(u);
+      if (f > fm) fm = f, kf = i;
+      if (u > um) um = u, ku = i;
+    }
+    const double *X = g->m->xyz;
+    const int *nd = fem_coupling_surface_nodes(g->cs);
+    double mu[3] = {0, 0, 0}, mv[3] = {0, 0, 0};
+    for (int i = 0; i < g->nv; i++)
+      for (int d = 0; d < 3; d++) {
+        mu[d] += (g->xw_cur[3 * i + d] - X[3 * nd[i] + d]) / g->nv;
+        mv[d] += (g->xw_cur[3 * i + d] - g->xw_prev[3 * i + d]) / g->nv;
+      }
+    sa_log(SA_LOG_DEBUG, "dem", "mean wall displacement (%.4g, %.4g, %.4g) mm, change over the step "
+           "(%.4g, %.4g, %.4g) mm", mu[0] * 1e3, mu[1] * 1e3, mu[2] * 1e3, mv[0] * 1e3, mv[1] * 1e3,
+           mv[2] * 1e3);
+    sa_log(SA_LOG_DEBUG, "dem", "largest nodal load %.4g N at (%.2f, %.2f, %.2f) mm; largest wall "
+           "displacement %.4g mm at (%.2f, %.2f, %.2f) mm", fm, X[3 * nd[kf]] * 1e3,
+           X[3 * nd[kf] + 1] * 1e3, X[3 * nd[kf] + 2] * 1e3, um * 1e3, X[3 * nd[ku]] * 1e3,
+           X[3 * nd[ku] + 1] * 1e3, X[3 * nd[ku] + 2] * 1e3);
+  }
   return 0;
 }
 
@@ -659,7 +726,7 @@ static int stroke(Run *g, double z_contact, double *s_reached) {
   /* preload: the settled bed's weight on the wall, piston at rest */
   for (int k = 0; k < N_PRELOAD && !rc; k++) {
     rc = dem_step(g, z_contact, 0, T);
-    if (!rc) rc = fem_step(g);
+    if (!rc) rc = fem_step(g, T);
     if (!rc) rc = step_checks(g, 0, 0, k == N_PRELOAD - 1);
     time += T;
     if (prog) sa_progress_update(prog, k + 1);
@@ -675,7 +742,7 @@ static int stroke(Run *g, double z_contact, double *s_reached) {
     double s0 = (k - 1) * cc->interval, s1 = fmin(k * cc->interval, sc->piston.stroke);
     double Tk = (s1 - s0) / v;
     rc = dem_step(g, z_contact - s0, v, Tk);
-    if (!rc) rc = fem_step(g);
+    if (!rc) rc = fem_step(g, Tk);
     if (!rc) rc = step_checks(g, k, s1, k % sc->dem.check_every == 0 || k == nint);
     if (rc) break;
     time += Tk;
@@ -719,6 +786,7 @@ int dem_granular_run(const DemScene *sc, const SaRun *run) {
   Run g;
   memset(&g, 0, sizeof g);
   g.sc = sc, g.run = run;
+  g.dynamic = !strcmp(sc->coupling.scheme, "dynamic");
   double t_start = sa_time_now(), z_contact = 0, s_reached = 0;
   int rc = setup_fem(&g);
   if (!rc) rc = setup_dem(&g);

@@ -63,8 +63,13 @@ static const SaParam piston_params[] = {
 static const SaParam coupling_params[] = {
     {"interval", SA_PARAM_REAL, P(interval), "m", "1e-4", 0, 0.01, SA_MIN_OPEN, NULL,
      "piston travel per coupling step (DEM forces -> FEM solve -> wall positions)"},
-    {"relaxation", SA_PARAM_REAL, P(relaxation), "-", "0.5", 0, 1, SA_MIN_OPEN, NULL,
+    {"scheme", SA_PARAM_CHOICE, P(scheme), "-", "dynamic", 0, 0, 0, "dynamic|static",
+     "FEM step per coupling step: implicit dynamic (HHT, silicone inertia and damping) or "
+     "static equilibrium (docs/dem.md: static diverges on the soft hanging actuator)"},
+    {"relaxation", SA_PARAM_REAL, P(relaxation), "-", "1", 0, 1, SA_MIN_OPEN, NULL,
      "under-relaxation of the wall forces handed to the FEM (1 = plain staggered)"},
+    {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,
+     "mass-proportional (Rayleigh) damping of the silicone in the dynamic scheme"},
     {"sample_every", SA_PARAM_INT, P(sample_every), "-", "20", 1, 100000, 0, NULL,
      "DEM steps between wall updates and force samples within a coupling step"},
     {"gravity", SA_PARAM_BOOL, P(gravity), "-", "1", 0, 0, 0, NULL,

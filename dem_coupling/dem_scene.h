@@ -23,8 +23,9 @@ typedef struct {
 } DemPistonCase;
 
 typedef struct {
-  double interval, relaxation;
+  double interval, relaxation, damping;
   int sample_every, gravity, vtk_every;
+  char scheme[SA_STR_MAX];
   char wall_surface[SA_STR_MAX], fixed_surface[SA_STR_MAX], tip_surface[SA_STR_MAX];
 } DemCouplingCase;
 
