@@ -375,7 +375,6 @@ static int dem_step(Run *g, double z0, double v, double T) {
   for (int k = 0; k < N_MESH; k++) g->F_mesh[k][0] = g->F_mesh[k][1] = g->F_mesh[k][2] = 0;
   memset(g->f_sum, 0, sizeof(double) * 3 * (size_t)g->nt);
   for (int k = 0; k < 3 * g->nv; k++) g->vw[k] = (g->xw_cur[k] - g->xw_prev[k]) / T;
-  if (getenv("SOFTACT_DEM_NO_WALL_VEL")) memset(g->vw, 0, sizeof(double) * 3 * (size_t)g->nv);
   double t = 0;
   for (long done = 0; done < nsteps;) {
     int n = nsteps - done < chunk ? (int)(nsteps - done) : chunk;
@@ -384,6 +383,13 @@ static int dem_step(Run *g, double z0, double v, double T) {
     /* positions at the end of the chunk; velocities constant over the step */
     for (int k = 0; k < 3 * g->nv; k++) g->xw[k] = g->xw_prev[k] + a * (g->xw_cur[k] - g->xw_prev[k]);
     SA_CHECK(dem_bridge_set_mesh_nodes(g->b, g->mesh_id[M_WALL], g->xw, g->vw));
+    if (sa_log_get_level() >= SA_LOG_DEBUG && done == 0) {
+      double *chk = malloc(sizeof(double) * 3 * (size_t)g->nv), e = 0;
+      if (chk && !dem_bridge_mesh_nodes(g->b, g->mesh_id[M_WALL], chk))
+        for (int k = 0; k < 3 * g->nv; k++) e = fmax(e, fabs(chk[k] - g->xw[k]));
+      free(chk);
+      sa_log(SA_LOG_DEBUG, "dem", "wall node read-back: largest difference %.3g m", e);
+    }
     SA_CHECK(set_piston(g, z0 - v * te, -v));
     g->t_exchange += sa_time_now() - t0;
     t0 = sa_time_now();
@@ -469,8 +475,7 @@ static int fem_step(Run *g, double T) {
     sa_log(SA_LOG_ERROR, "dem", "FEM solve failed: %s", rep.reason);
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
-  if (!getenv("SOFTACT_DEM_FREEZE_WALL"))
-    fem_coupling_surface_gather(g->cs, fem_solver_positions(g->s), g->xw_cur);
+  fem_coupling_surface_gather(g->cs, fem_solver_positions(g->s), g->xw_cur);
   if (sa_log_get_level() >= SA_LOG_DEBUG) {
     int kf = 0, ku = 0;
     double fm = 0, um = 0;

@@ -70,8 +70,9 @@ static const SaParam coupling_params[] = {
      "under-relaxation of the wall forces handed to the FEM (1 = plain staggered)"},
     {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,
      "mass-proportional (Rayleigh) damping of the silicone in the dynamic scheme"},
-    {"sample_every", SA_PARAM_INT, P(sample_every), "-", "20", 1, 100000, 0, NULL,
-     "DEM steps between wall updates and force samples within a coupling step"},
+    {"sample_every", SA_PARAM_INT, P(sample_every), "-", "1", 1, 100000, 0, NULL,
+     "DEM steps between wall updates and force samples within a coupling step (> 1 moves the "
+     "wall in jumps, which pushes the grains along the motion: docs/dem.md)"},
     {"gravity", SA_PARAM_BOOL, P(gravity), "-", "1", 0, 0, 0, NULL,
      "gravity (-z, 9.81 m/s^2) on grains and silicone"},
     {"vtk_every", SA_PARAM_INT, P(vtk_every), "-", "25", 0, 100000, 0, NULL,

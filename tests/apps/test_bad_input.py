@@ -26,6 +26,11 @@ TABLE = [
     ("two_scenes", HMSA + "[mesh]\n", [], ["describes one scene"]),
     ("missing_mesh_file", "[mesh]\ngeo = no_such_mesh.geo\n", [], [":2:", "geo", "no_such_mesh.geo", "not found"]),
     ("bad_mesh_size", "[mesh]\nh = 0\n", [], [":2:", "h", "expected a real number in"]),
+    # FEM-DEM scene: refused before LIGGGHTS starts
+    ("dem_unsafe_time_step", "[grains]\n[dem]\ndt_fraction = 0.5\n", [], [":3:", "dt_fraction", "expected a real number in"]),
+    ("dem_beads_larger_than_bore", "[grains]\ndiameter = 6e-3\n", [], ["diameter", "smaller than the bore radius"]),
+    ("dem_stroke_longer_than_barrel", "[grains]\n[piston]\nstroke = 0.035\n", [], ["stroke", "longer than the barrel"]),
+    ("dem_negative_friction", "[grains]\nfriction_wall = -0.1\n", [], [":2:", "friction_wall", "expected a real number in"]),
 ]
 
 def write_case(path, text, name):
