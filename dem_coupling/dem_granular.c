@@ -121,7 +121,7 @@ static int setup_fem(Run *g) {
 /* ------------------------------------------------------------------ rigid meshes */
 
 /* Barrel: a tube of radius R_BORE from z = 0 to z_top, nth segments around, rings every dz. */
-static int make_barrel(Run *g, double z_top, int *nv, double **xyz, int *nt, int **tri) {
+static int make_barrel(double z_top, int *nv, double **xyz, int *nt, int **tri) {
   int nth = 48, nz = (int)ceil(z_top / 2e-3);
   if (nz < 1) nz = 1;
   *nv = nth * (nz + 1), *nt = 2 * nth * nz;
@@ -141,7 +141,6 @@ static int make_barrel(Run *g, double z_top, int *nv, double **xyz, int *nt, int
       q[0] = a, q[1] = c, q[2] = b, q[3] = b, q[4] = c, q[5] = d;
       t += 2;
     }
-  (void)g;
   return 0;
 }
 
@@ -194,7 +193,7 @@ static int setup_dem(Run *g) {
   /* barrel, tall enough for the pour (grains are above barrel_length only while pouring) */
   int bnv, bnt, *btri;
   double *bx;
-  SA_CHECK(make_barrel(g, g->z_top, &bnv, &bx, &bnt, &btri));
+  SA_CHECK(make_barrel(g->z_top, &bnv, &bx, &bnt, &btri));
   int rc = dem_bridge_add_mesh(g->b, "barrel", bnv, bx, bnt, btri, DEM_WALL_STEEL,
                                &g->mesh_id[M_BARREL]);
   free(btri);
@@ -375,7 +374,6 @@ static int dem_step(Run *g, double z0, double v, double T) {
   for (int k = 0; k < N_MESH; k++) g->F_mesh[k][0] = g->F_mesh[k][1] = g->F_mesh[k][2] = 0;
   memset(g->f_sum, 0, sizeof(double) * 3 * (size_t)g->nt);
   for (int k = 0; k < 3 * g->nv; k++) g->vw[k] = (g->xw_cur[k] - g->xw_prev[k]) / T;
-  double t = 0;
   for (long done = 0; done < nsteps;) {
     int n = nsteps - done < chunk ? (int)(nsteps - done) : chunk;
     double te = (done + n) * g->dt, a = fmin(te / T, 1.0);
@@ -408,9 +406,7 @@ static int dem_step(Run *g, double z0, double v, double T) {
     nsamp++;
     g->t_exchange += sa_time_now() - t0;
     done += n;
-    t = te;
   }
-  (void)t;
   for (int k = 0; k < 3 * g->nt; k++) {
     g->f_sum[k] /= nsamp;
     SA_REQUIRE(isfinite(g->f_sum[k]), SA_ERR_NAN, "non-finite wall force from the DEM");
