@@ -102,6 +102,11 @@ int dem_bridge_insert_cylinder(DemBridge *b, double cx, double cy, double r, dou
                                double z_hi, int n, int *inserted);
 /* Advance nsteps DEM steps. */
 int dem_bridge_run(DemBridge *b, int nsteps);
+/* Change the Young's modulus of the grains and of the walls to young [Pa] and the time step to
+ * dt [s] (checked against dt_safety x the Rayleigh step of the new modulus, SA_ERR_INPUT),
+ * e.g. to pour at a softer stiffness and press at the working one. Takes effect at the next
+ * dem_bridge_run; existing tangential contact springs keep their stored displacement. */
+int dem_bridge_set_young(DemBridge *b, double young, double dt);
 /* Number of grains currently in the simulation (lost ones excluded). */
 int dem_bridge_count(DemBridge *b);
 /* Copy grain data out (any may be NULL): x, v, f [out] 3*n, radius [out] n; n = count. The

@@ -878,9 +878,30 @@ int dem_bridge_run(DemBridge *b, int nsteps) {
   SA_CHECK(dem_bridge_finalize_walls(b));
   if (nsteps == 0) return 0;
   /* the full set-up (neighbour lists from scratch, fix set-up) only when something changed */
-  SA_CHECK(send(b, "run %d pre %s post no", nsteps, b->need_setup || !b->ran ? "yes" : "no"));
+  /* long runs (pouring, settling) print LIGGGHTS's time breakdown to the log; per-step runs
+   * of the coupling would flood it */
+  SA_CHECK(send(b, "run %d pre %s post %s", nsteps, b->need_setup || !b->ran ? "yes" : "no",
+                nsteps >= 1000 ? "yes" : "no"));
   b->ran = 1;
   b->need_setup = 0;
+  return 0;
+}
+
+int dem_bridge_set_young(DemBridge *b, double young, double dt) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_set_young before dem_bridge_setup");
+  DemParams p = b->p;
+  p.young = p.wall_young = young;
+  p.dt = dt;
+  SA_CHECK(params_check(&p));
+  /* a fix redefined under its ID replaces the old one; the pair and wall styles read the
+   * material properties again at the next full set-up (test dem_stiffness_switch checks the
+   * static Hertz overlap before and after) */
+  SA_CHECK(send(b, "fix m1 all property/global youngsModulus peratomtype %.17g %.17g %.17g",
+                p.young, p.wall_young, p.wall_young));
+  SA_CHECK(send(b, "timestep %.17g", p.dt));
+  b->p = p;
+  b->need_setup = 1;
   return 0;
 }
 

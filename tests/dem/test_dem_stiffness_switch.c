@@ -1,0 +1,63 @@
+/* dem_bridge_set_young: a grain resting on a flat wall under gravity has the static Hertz
+ * overlap of its modulus before and after the modulus is changed mid-run.
+ *
+ * Reference (Hertz, Johnson 1985 sec. 4.2): a sphere of weight W = m g on a flat wall,
+ *   W = 4/3 E* sqrt(R) delta^(3/2),  1/E* = (1 - nu^2)/E + (1 - nu_w^2)/E_w
+ *   => delta = (3 W / (4 E* sqrt(R)))^(2/3).
+ * With restitution 0.3 the bounce dies out within the settle time; the remaining oscillation
+ * and the contact's viscous term at rest are zero, so the overlap matches to the round-off of
+ * the integration (checked to 1 %). The modulus is changed by 10x: the overlap must follow
+ * (a factor 10^(2/3) = 4.64), which also shows the walls' modulus was switched. */
+#include "dem_test_util.h"
+
+static double settle_overlap(DemBridge *b, int steps) {
+  T_CHECK(dem_bridge_run(b, steps));
+  return dem_bridge_max_overlap(b);
+}
+
+int main(void) {
+  DemParams p;
+  t_params(&p);
+  p.diameter = 4e-3;
+  p.young = 5e6;
+  p.poisson = 0.3;
+  p.wall_young = 5e6;
+  p.wall_poisson = 0.3;
+  p.restitution = 0.3;
+  p.friction = p.friction_wall = p.friction_piston = 0.3;
+  p.rolling_friction = 0;
+  p.gravity[0] = p.gravity[1] = 0, p.gravity[2] = -9.81;
+  p.dt = 0.1 * dem_rayleigh_dt(p.diameter, p.density, p.young, p.poisson);
+  p.skin = 0.5e-3;
+  const double R = 0.5 * p.diameter, m = p.density * 4.0 / 3.0 * M_PI * R * R * R;
+
+  DemBridge *b = NULL;
+  T_CHECK(dem_bridge_create(t_log(), &b));
+  T_CHECK(dem_bridge_setup(b, &p));
+  double xyz[12];
+  int tri[6], id, ins;
+  t_square(0, 0, 0, 0.01, xyz, tri);
+  T_CHECK(dem_bridge_add_mesh(b, "plate", 4, xyz, 2, tri, DEM_WALL_STEEL, &id));
+  T_CHECK(dem_bridge_insert_cylinder(b, -0.004, 0.004, R, 0.01e-3, 0.01e-3 + p.diameter, 1, &ins));
+  t_true("one sphere inserted", ins == 1);
+
+  double E[2] = {p.young, 10 * p.young};
+  for (int k = 0; k < 2; k++) {
+    if (k == 1) {
+      double dt = 0.1 * dem_rayleigh_dt(p.diameter, p.density, E[1], p.poisson);
+      /* an unsafe step for the stiffer grains is refused */
+      t_true("a time step above the Rayleigh limit of the new modulus is refused",
+             dem_bridge_set_young(b, E[1], 10 * dt) == SA_ERR_INPUT);
+      sa_error_clear();
+      T_CHECK(dem_bridge_set_young(b, E[1], dt));
+    }
+    double estar = 1.0 / (2 * (1 - p.poisson * p.poisson) / E[k]);
+    double ref = pow(3 * m * 9.81 / (4 * estar * sqrt(R)), 2.0 / 3.0) / p.diameter;
+    double got = settle_overlap(b, 40000);
+    if (getenv("DEM_TEST_VERBOSE"))
+      printf("E = %g Pa: overlap/d %.6g, Hertz %.6g\n", E[k], got, ref);
+    t_close(k ? "overlap after the switch" : "overlap before the switch", got, ref, 0, 0.01);
+  }
+  dem_bridge_destroy(&b);
+  return t_failures ? 1 : 0;
+}
