@@ -90,6 +90,9 @@ static const SaParam dem_params[] = {
     {"dt_fraction", SA_PARAM_REAL, P(dt_fraction), "-", "0.2", 0, 0.35, SA_MIN_OPEN, NULL,
      "DEM time step as a fraction of the Rayleigh time step of the softened grains "
      "(above 0.35 is refused as unsafe)"},
+    {"pour_softening", SA_PARAM_REAL, P(pour_softening), "-", "1000", 1, 1e6, 0, NULL,
+     "softening while pouring and settling (never stiffer than [grains] softening); the working "
+     "stiffness is switched in and the bed settles again before the piston comes down"},
     {"skin", SA_PARAM_REAL, P(skin), "-", "0.2", 0.01, 2, 0, NULL,
      "neighbour skin as a fraction of the bead diameter"},
     {"settle_speed", SA_PARAM_REAL, P(settle_speed), "m/s", "2e-3", 0, INFINITY, SA_MIN_OPEN,

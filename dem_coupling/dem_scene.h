@@ -31,6 +31,7 @@ typedef struct {
 
 typedef struct {
   double dt_fraction, skin, settle_speed, max_overlap, balance_tol, settle_time_max;
+  double pour_softening;
   int seed, check_every;
 } DemNumericsCase;
 
