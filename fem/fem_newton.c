@@ -188,10 +188,7 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
   rc = use_old ? 0 : factorize(s, sk);
   if (!use_old) t->nfresh++;
   else s->st.n_reuse++;
-  /* the first direction of a substep counts as fresh: with the REUSE predictor it comes from
-   * the last substep's factors, and its full step leaves the volumetric residual that one more
-   * solve with the same factors removes (measured on the coupled scene, docs/dem.md) */
-  t->fresh_last = !use_old || t->it == 0;
+  t->fresh_last = !use_old;
   t->have_fact = rc == 0;
   if (rc) {
     *why = FEM_DIVERGED_LINEAR_SOLVE;
