@@ -63,9 +63,10 @@ static const SaParam piston_params[] = {
 static const SaParam coupling_params[] = {
     {"interval", SA_PARAM_REAL, P(interval), "m", "1e-4", 0, 0.01, SA_MIN_OPEN, NULL,
      "piston travel per coupling step (DEM forces -> FEM solve -> wall positions)"},
-    {"scheme", SA_PARAM_CHOICE, P(scheme), "-", "dynamic", 0, 0, 0, "dynamic|static",
-     "FEM step per coupling step: implicit dynamic (HHT, silicone inertia and damping) or "
-     "static equilibrium (docs/dem.md: static diverges on the soft hanging actuator)"},
+    {"scheme", SA_PARAM_CHOICE, P(scheme), "-", "dynamic", 0, 0, 0, "dynamic|static|rigid",
+     "FEM step per coupling step: implicit dynamic (HHT, silicone inertia and damping), static "
+     "equilibrium (docs/dem.md: static diverges on the soft hanging actuator), or rigid (no FEM "
+     "solve: the cavity stays in its hanging shape; LIGGGHTS alone, the overhead study)"},
     {"relaxation", SA_PARAM_REAL, P(relaxation), "-", "1", 0, 1, SA_MIN_OPEN, NULL,
      "under-relaxation of the wall forces handed to the FEM (1 = plain staggered)"},
     {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,

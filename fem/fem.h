@@ -26,6 +26,8 @@
 #ifndef FEM_H
 #define FEM_H
 
+#include <stdio.h>
+
 #include "fem_material.h"
 #include "fem_mesh.h"
 #include "sa_module.h"
@@ -226,6 +228,14 @@ void fem_solver_stats(const FemSolver *s, FemSolverStats *st);
  * over the free dofs. Debugging and tests; allocates. */
 int fem_solver_check_tangent(FemSolver *s, double h, double *rel_err);
 const FemMesh *fem_solver_mesh(const FemSolver *s);
+/* Checkpoint (fem_checkpoint.c): the solver's state - displacements, HHT velocities and
+ * accelerations, committed and target loads, time, history - to the binary stream f [in]
+ * (opened by the caller, e.g. an atomic sa_file), and back into a solver set up from the same
+ * case. Writing drops the factorisation, so the run that goes on and one resumed from the
+ * file take the same next Newton path. Reading checks the model's size (SA_ERR_INPUT naming
+ * name [in] on a mismatch or a truncated stream). */
+int fem_solver_write_state(FemSolver *s, FILE *f);
+int fem_solver_read_state(FemSolver *s, FILE *f, const char *name);
 void fem_solver_destroy(FemSolver **s);
 
 /* Bending angle [deg] of a deformed surface: rotation in the x-z plane of the area-weighted

@@ -14,6 +14,7 @@ set(_sa_fem_sources
   ${CMAKE_CURRENT_LIST_DIR}/fem_newton.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_continuation.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_dynamics.c
+  ${CMAKE_CURRENT_LIST_DIR}/fem_checkpoint.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_bending.c)
 foreach(_f fem_actuator.c fem_coupling.c fem_scene.c)
   if(EXISTS ${CMAKE_CURRENT_LIST_DIR}/${_f})
