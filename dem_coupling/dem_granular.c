@@ -24,6 +24,7 @@
 #include "dem.h"
 #include "dem_checks.h"
 #include "dem_scene.h"
+#include "fem_contrib.h"
 #include "fem_coupling.h"
 #include "sa_csv.h"
 #include "sa_error.h"
@@ -50,6 +51,7 @@ typedef struct {
   double *xw_prev, *xw_cur;   /* wall vertex positions: start and end of the motion */
   double *xw, *vw;            /* interpolated positions and velocities handed to LIGGGHTS */
   double *f_tri, *f_sum, *f_node, *f_app; /* wall forces: per triangle, summed, nodal, applied */
+  double *k_if, *n_if, *a_if; /* Robin interface: stiffness, normal, anchor per wall vertex */
   double V0;
   /* DEM */
   DemBridge *b;
@@ -75,6 +77,62 @@ typedef struct {
 } Run;
 
 /* ------------------------------------------------------------------ FEM side */
+
+/* Robin interface (docs/dem.md): the bed's reaction to wall motion beyond the position the DEM
+ * saw, linearised as a normal spring per wall vertex, f = k n n.(x - a); k = 0 where no grain
+ * pushes. Stiff beds make the plain staggered exchange unstable (the FEM moves the wall by the
+ * force of a bed it does not know is there); the spring lets the FEM know. */
+static int interface_eval(void *ctx, FemAsmView *v) {
+  Run *g = ctx;
+  const double *x = fem_asm_positions(v);
+  const int *nd = fem_coupling_surface_nodes(g->cs);
+  int tangent = fem_asm_wants_tangent(v);
+  for (int i = 0; i < g->nv; i++) {
+    double k = g->k_if[i];
+    if (k <= 0) continue;
+    const double *n = g->n_if + 3 * i, *a = g->a_if + 3 * i, *xi = x + 3 * nd[i];
+    double s = k * (n[0] * (xi[0] - a[0]) + n[1] * (xi[1] - a[1]) + n[2] * (xi[2] - a[2]));
+    double f[3] = {s * n[0], s * n[1], s * n[2]};
+    fem_asm_add_force(v, nd[i], f);
+    if (tangent) {
+      double K[9];
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) K[3 * r + c] = k * n[r] * n[c];
+      fem_asm_add_block(v, nd[i], nd[i], K);
+    }
+  }
+  return 0;
+}
+
+/* Interface stiffness from the step's wall forces: a triangle pushed with normal force F has
+ * the Hertz contact stiffness dF/ddelta = (6 E*^2 R F)^(1/3) (grain on a flat wall, E* of the
+ * pair); each vertex takes a third of its triangles' stiffness along its mean normal, times
+ * [coupling] interface_stiffness; anchored at the current wall position. */
+static void interface_update(Run *g) {
+  const DemGrainCase *gr = &g->sc->grains;
+  double E = gr->young / gr->softening, nu = gr->poisson;
+  double estar = E / (2 * (1 - nu * nu)), R = 0.5 * g->d;
+  double c = 6 * estar * estar * R, fac = g->sc->coupling.interface_stiffness;
+  const int *tri = fem_coupling_surface_triangles(g->cs);
+  memset(g->k_if, 0, sizeof(double) * (size_t)g->nv);
+  memset(g->n_if, 0, sizeof(double) * 3 * (size_t)g->nv);
+  for (int t = 0; t < g->nt; t++) {
+    double n[3], A = fem_coupling_surface_tri_area(g->cs, g->xw_cur, t, n);
+    double fn = fabs(g->f_sum[3 * t] * n[0] + g->f_sum[3 * t + 1] * n[1] + g->f_sum[3 * t + 2] * n[2]);
+    double k = fac * cbrt(c * fn) / 3;
+    for (int j = 0; j < 3; j++) {
+      int vtx = tri[3 * t + j];
+      g->k_if[vtx] += k;
+      for (int d = 0; d < 3; d++) g->n_if[3 * vtx + d] += A * n[d];
+    }
+  }
+  for (int i = 0; i < g->nv; i++) {
+    double *n = g->n_if + 3 * i, l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
+    else g->k_if[i] = 0;
+  }
+  memcpy(g->a_if, g->xw_cur, sizeof(double) * 3 * (size_t)g->nv);
+}
 
 static int setup_fem(Run *g) {
   const DemScene *sc = g->sc;
@@ -107,8 +165,14 @@ static int setup_fem(Run *g) {
   g->xw = malloc(sizeof(double) * v3), g->vw = calloc(v3, sizeof(double));
   g->f_tri = malloc(sizeof(double) * t3), g->f_sum = calloc(t3, sizeof(double));
   g->f_node = calloc(v3, sizeof(double)), g->f_app = calloc(v3, sizeof(double));
+  g->k_if = calloc((size_t)g->nv, sizeof(double)), g->n_if = calloc(v3, sizeof(double));
+  g->a_if = calloc(v3, sizeof(double));
   SA_REQUIRE(g->xw_prev && g->xw_cur && g->xw && g->vw && g->f_tri && g->f_sum && g->f_node &&
-             g->f_app, SA_ERR_MEMORY, "coupling buffers");
+             g->f_app && g->k_if && g->n_if && g->a_if, SA_ERR_MEMORY, "coupling buffers");
+  if (g->sc->coupling.interface_stiffness > 0) {
+    FemContributor c = {"dem interface", NULL, interface_eval, g};
+    SA_CHECK(fem_solver_add_contributor(g->s, &c));
+  }
   fem_coupling_surface_gather(g->cs, fem_solver_positions(g->s), g->xw_cur);
   memcpy(g->xw_prev, g->xw_cur, sizeof(double) * v3);
   memcpy(g->xw, g->xw_cur, sizeof(double) * v3);
@@ -490,6 +554,7 @@ static int fem_step(Run *g, double T) {
   double w = g->sc->coupling.relaxation;
   for (int k = 0; k < 3 * g->nv; k++) g->f_app[k] += w * (g->f_node[k] - g->f_app[k]);
   SA_CHECK(fem_solver_set_nodal_forces(g->s, g->nv, fem_coupling_surface_nodes(g->cs), g->f_app));
+  if (g->sc->coupling.interface_stiffness > 0) interface_update(g);
   memcpy(g->xw_prev, g->xw_cur, sizeof(double) * 3 * (size_t)g->nv);
   g->t_exchange += sa_time_now() - t0;
   if (g->rigid) { /* LIGGGHTS alone: the wall keeps its shape, nothing is solved */
@@ -820,7 +885,8 @@ static void run_free(Run *g) {
   fem_mesh_destroy(&g->m);
   free(g->mats);
   double *bufs[] = {g->xw_prev, g->xw_cur, g->xw, g->vw, g->f_tri, g->f_sum, g->f_node,
-                    g->f_app, g->px, g->pv, g->pf, g->pr, g->sigma, g->vm, g->reg};
+                    g->f_app, g->px, g->pv, g->pf, g->pr, g->sigma, g->vm, g->reg,
+                    g->k_if, g->n_if, g->a_if};
   for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++) free(bufs[i]);
   for (int k = 0; k < N_MESH; k++) free(g->mesh_x[k]), free(g->mesh_f[k]);
   free(g->piston_v);

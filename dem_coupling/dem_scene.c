@@ -69,6 +69,10 @@ static const SaParam coupling_params[] = {
      "solve: the cavity stays in its hanging shape; LIGGGHTS alone, the overhead study)"},
     {"relaxation", SA_PARAM_REAL, P(relaxation), "-", "1", 0, 1, SA_MIN_OPEN, NULL,
      "under-relaxation of the wall forces handed to the FEM (1 = plain staggered)"},
+    {"interface_stiffness", SA_PARAM_REAL, P(interface_stiffness), "-", "0", 0, 100, 0, NULL,
+     "Robin coupling: the FEM wall carries, per node, this factor times the Hertz contact "
+     "stiffness of its wall forces, anchored at the wall position the DEM saw (the bed's "
+     "linearised reaction to further wall motion; 0 = plain staggered; docs/dem.md)"},
     {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,
      "mass-proportional (Rayleigh) damping of the silicone in the dynamic scheme"},
     {"sample_every", SA_PARAM_INT, P(sample_every), "-", "1", 1, 100000, 0, NULL,
@@ -91,9 +95,10 @@ static const SaParam dem_params[] = {
     {"dt_fraction", SA_PARAM_REAL, P(dt_fraction), "-", "0.2", 0, 0.35, SA_MIN_OPEN, NULL,
      "DEM time step as a fraction of the Rayleigh time step of the softened grains "
      "(above 0.35 is refused as unsafe)"},
-    {"pour_softening", SA_PARAM_REAL, P(pour_softening), "-", "1000", 1, 1e6, 0, NULL,
-     "softening while pouring and settling (never stiffer than [grains] softening); the working "
-     "stiffness is switched in and the bed settles again before the piston comes down"},
+    {"pour_softening", SA_PARAM_REAL, P(pour_softening), "-", "1", 1, 1e6, 0, NULL,
+     "softening while pouring and settling (never stiffer than [grains] softening: 1 = pour at "
+     "the working stiffness). Off by default: a softer pour locks its overlaps into the "
+     "confined bed, and the stiffer contacts then press the wall ~10x harder (docs/dem.md)"},
     {"skin", SA_PARAM_REAL, P(skin), "-", "0.2", 0.01, 2, 0, NULL,
      "neighbour skin as a fraction of the bead diameter"},
     {"settle_speed", SA_PARAM_REAL, P(settle_speed), "m/s", "2e-3", 0, INFINITY, SA_MIN_OPEN,

@@ -23,7 +23,7 @@ typedef struct {
 } DemPistonCase;
 
 typedef struct {
-  double interval, relaxation, damping;
+  double interval, relaxation, damping, interface_stiffness;
   int sample_every, gravity, vtk_every;
   char scheme[SA_STR_MAX];
   char wall_surface[SA_STR_MAX], fixed_surface[SA_STR_MAX], tip_surface[SA_STR_MAX];

@@ -7,7 +7,8 @@
  * With restitution 0.3 the bounce dies out within the settle time; the remaining oscillation
  * and the contact's viscous term at rest are zero, so the overlap matches to the round-off of
  * the integration (checked to 1 %). The modulus is changed by 10x: the overlap must follow
- * (a factor 10^(2/3) = 4.64), which also shows the walls' modulus was switched. */
+ * (a factor 10^(2/3) = 4.64), which also shows the walls' modulus was switched; and the
+ * force read back from the wall carries the grain's weight m g before and after. */
 #include "dem_test_util.h"
 
 static double settle_overlap(DemBridge *b, int steps) {
@@ -57,6 +58,11 @@ int main(void) {
     if (getenv("DEM_TEST_VERBOSE"))
       printf("E = %g Pa: overlap/d %.6g, Hertz %.6g\n", E[k], got, ref);
     t_close(k ? "overlap after the switch" : "overlap before the switch", got, ref, 0, 0.01);
+    /* the wall force read back carries the weight (the stress module survives the switch) */
+    double f[6];
+    T_CHECK(dem_bridge_mesh_forces(b, id, f));
+    t_close(k ? "wall force after the switch" : "wall force before the switch", -(f[2] + f[5]),
+            m * 9.81, 0, 1e-3);
   }
   dem_bridge_destroy(&b);
   return t_failures ? 1 : 0;
