@@ -107,6 +107,9 @@ int dem_bridge_count(DemBridge *b);
 /* Copy grain data out (any may be NULL): x, v, f [out] 3*n, radius [out] n; n = count. The
  * order is LIGGGHTS' own and may change from one dem_bridge_run to the next. */
 int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *radius);
+/* LIGGGHTS' id of each grain, id [out] n, in the order of dem_bridge_particles (ids stay with
+ * their grains across runs and checkpoints). */
+int dem_bridge_particle_ids(DemBridge *b, int *id);
 /* Largest overlap over all grain-grain and grain-wall contacts, as a fraction of the grain
  * diameter [-] (grain-grain: from positions; grain-wall: from the meshes). */
 double dem_bridge_max_overlap(DemBridge *b);
@@ -116,6 +119,52 @@ double dem_bridge_kinetic_energy(DemBridge *b);
  * path [in] (no whitespace and none of # $ * % & ' " in it). Reading one back is not part of
  * this interface yet. */
 int dem_bridge_write_restart(DemBridge *b, const char *path);
+/* ---- checkpoint and resume (issue 12). A checkpoint is one file holding LIGGGHTS' restart
+ * (grains, time step counter, grain-grain and grain-wall contact histories, wall nodes) and
+ * what that restart lacks (node velocities of the meshes, the forces and torques of the last
+ * step, the parameters, the insertion generator), framed with a version, sizes and a hash;
+ * format in dem_bridge.c and docs/dem.md.
+ *
+ * Write (between two dem_bridge_run calls, after the wall meshes were set for the next step or
+ * not, either way):
+ *   dem_bridge_write_checkpoint(b, path)
+ * Resume, in a new process or on a new bridge:
+ *   dem_bridge_create(log, &b)
+ *   dem_bridge_setup_from_checkpoint(b, &params, path, expected_count)   instead of setup
+ *   dem_bridge_add_mesh(b, ...)   every mesh again, same order, names, types, triangles, and
+ *                                 the node positions of the checkpoint (bitwise); their node
+ *                                 velocities come back from the checkpoint
+ *   then the loop as before (dem_bridge_set_mesh_nodes / dem_bridge_run / ...).
+ * The first dem_bridge_run after a checkpoint is written or read does a set-up pass and then
+ * puts back the grain forces and torques of the checkpoint's last step: the continuation of
+ * the bridge that wrote the checkpoint and of a bridge resumed from it are the same,
+ * bit for bit (tests/dem/test_dem_checkpoint.c). */
+typedef struct {
+  long long step; /* LIGGGHTS time step counter at the checkpoint */
+  int count;      /* grains */
+  int nmesh;      /* wall meshes */
+  double diameter, dt; /* [m], [s] */
+} DemCheckpointInfo;
+
+/* Write a checkpoint of the bridge's state to path [in] (any file name; the file appears
+ * complete or not at all: a temporary file beside it is renamed). Finalizes the walls if the
+ * caller had not. SA_ERR_IO if the file cannot be written (an existing one is then left as it
+ * was). */
+int dem_bridge_write_checkpoint(DemBridge *b, const char *path);
+/* Read the header of checkpoint path [in] into info [out], after checking the whole file
+ * (type, version, byte order, sizes, hash). No bridge needed: for the caller's own checks
+ * (e.g. the step of its FEM state). */
+int dem_bridge_checkpoint_info(const char *path, DemCheckpointInfo *info);
+/* Set up a fresh bridge (instead of dem_bridge_setup) from checkpoint path [in]. params [in]
+ * must equal the checkpoint's, every field bitwise (a field that differs is named);
+ * expected_count >= 0 must equal its grain count (< 0: not checked). Every check on the file
+ * and the arguments happens before LIGGGHTS sees anything: a refusal (SA_ERR_IO for a file
+ * that cannot be read, SA_ERR_INPUT for a damaged, truncated or mismatching one, the message
+ * naming the file) leaves the bridge fresh, to be set up again. After LIGGGHTS has read the
+ * restart, the grains it holds are checked bitwise against the checkpoint (SA_ERR_LIBRARY;
+ * then only dem_bridge_destroy is left). */
+int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, const char *path,
+                                     int expected_count);
 /* Send one raw input-script command (validated by the caller; tests and studies only). */
 int dem_bridge_command(DemBridge *b, const char *cmd);
 void dem_bridge_destroy(DemBridge **b);
