@@ -107,6 +107,11 @@ int dem_bridge_count(DemBridge *b);
 /* Copy grain data out (any may be NULL): x, v, f [out] 3*n, radius [out] n; n = count. The
  * order is LIGGGHTS' own and may change from one dem_bridge_run to the next. */
 int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *radius);
+/* The grain-wall contacts LIGGGHTS tracks on mesh id (its fix contacthistory/mesh): grain id,
+ * triangle and tangential spring [m] of each, grain [out] max, tri [out] max, shear [out]
+ * 3 max; their number in *n (only the first max written). After the first run. For checks. */
+int dem_bridge_wall_contacts(DemBridge *b, int id, int max, int *grain, int *tri, double *shear,
+                             int *n);
 /* LIGGGHTS' id of each grain, id [out] n, in the order of dem_bridge_particles (ids stay with
  * their grains across runs and checkpoints). */
 int dem_bridge_particle_ids(DemBridge *b, int *id);

@@ -85,16 +85,15 @@ struct DemBridge {
   size_t cell_cap, next_cap;
   double *pos;
   size_t pos_cap;
-  /* checkpoint/resume: grain forces to restore at the next dem_bridge_run (restore_f), and the
-   * meshes a resumed bridge expects (resumed) */
+  /* the last checkpoint written or read; resumed: the meshes still to come are its */
   Checkpoint *ck; /* [owned] */
-  int restore_f, resumed;
+  int resumed;
 };
 
 static void ck_free(Checkpoint **ck);
 static int ck_mesh_check(const DemBridge *b, const char *name, int nverts, const double *xyz,
                          int ntri, const int *tri, DemWallType type);
-static int ck_restore_forces(DemBridge *b);
+static int ck_setup_pass(DemBridge *b, int run0);
 
 /* ---------------------------------------------------------------- closed forms */
 
@@ -360,7 +359,6 @@ int dem_bridge_command(DemBridge *b, const char *cmd) {
   SA_REQUIRE(cmd, SA_ERR_INTERNAL, "no command");
   lammps_command(b->lmp, (char *)cmd);
   b->need_setup = 1;
-  b->restore_f = 0;
   return 0;
 }
 
@@ -670,6 +668,12 @@ int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double
              "cannot make mesh '%s' movable", name);
   b->need_setup = 1;
   *id = b->nmesh - 1;
+  if (b->resumed) {
+    /* the checkpoint's node velocities for the set-up pass, which follows the last mesh at
+     * once: with the walls where they were at the checkpoint (the caller moves them next) */
+    dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, m->v, 0);
+    if (b->nmesh == b->ck->nmesh) SA_CHECK(dem_bridge_finalize_walls(b));
+  }
   return 0;
 }
 
@@ -731,11 +735,13 @@ int dem_bridge_finalize_walls(DemBridge *b) {
   for (int i = 0; i < b->nmesh; i++) SA_CHECK(mesh_map(b, &b->mesh[i]));
   /* node velocities are not in LIGGGHTS' restart ("v" is restart_no): those of the checkpoint
    * or the caller's since (the set-up pass keeps them; set again once the map is checked) */
-  if (b->resumed)
+  if (b->resumed) {
     for (int i = 0; i < b->nmesh; i++) {
       DemMesh *m = &b->mesh[i];
       dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, m->v, 0);
     }
+    SA_CHECK(ck_setup_pass(b, 0)); /* the run 0 above was the set-up pass */
+  }
   return 0;
 }
 
@@ -940,7 +946,6 @@ int dem_bridge_insert_cylinder(DemBridge *b, double cx, double cy, double r, dou
   SA_CHECK(send(b, "set type 1 diameter %.17g", p->diameter));
   SA_CHECK(send(b, "set type 1 density %.17g", p->density));
   *inserted = nlocal(b) - n0;
-  b->restore_f = 0;
   SA_REQUIRE(*inserted == np - n0, SA_ERR_LIBRARY, "LIGGGHTS created %d of %d grains", *inserted,
              np - n0);
   b->need_setup = 1;
@@ -953,7 +958,6 @@ int dem_bridge_run(DemBridge *b, int nsteps) {
   SA_REQUIRE(nsteps >= 0, SA_ERR_INPUT, "dem_bridge_run: nsteps = %d, must be >= 0", nsteps);
   SA_CHECK(dem_bridge_finalize_walls(b));
   if (nsteps == 0) return 0;
-  if (b->restore_f) SA_CHECK(ck_restore_forces(b));
   /* the full set-up (neighbour lists from scratch, fix set-up) only when something changed */
   SA_CHECK(send(b, "run %d pre %s post no", nsteps, b->need_setup || !b->ran ? "yes" : "no"));
   b->ran = 1;
@@ -978,6 +982,20 @@ int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *
     SA_REQUIRE(r || n == 0, SA_ERR_LIBRARY, "LIGGGHTS has no radius array");
     if (n) memcpy(radius, r, (size_t)n * sizeof *r);
   }
+  return 0;
+}
+
+int dem_bridge_wall_contacts(DemBridge *b, int id, int max, int *grain, int *tri, double *shear,
+                             int *n) {
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  SA_REQUIRE(n && max >= 0 && (max == 0 || (grain && tri && shear)), SA_ERR_INPUT,
+             "dem_bridge_wall_contacts: no output arrays");
+  *n = 0;
+  SA_REQUIRE(b->ran, SA_ERR_INPUT, "dem_bridge_wall_contacts before the first run");
+  int k = dem_shim_mesh_contacts(b->lmp, m->shim, max, grain, tri, shear);
+  SA_REQUIRE(k >= 0, SA_ERR_LIBRARY, "mesh '%s' has no contact history", m->fix_id + 5);
+  *n = k;
   return 0;
 }
 
@@ -1498,11 +1516,11 @@ int dem_bridge_write_checkpoint(DemBridge *b, const char *path) {
     ck_free(&ck);
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
-  /* the next run starts the way a resumed one does: set-up pass, then these forces */
+  /* continue the way a resumed bridge does */
   snprintf(ck->path, sizeof ck->path, "%s", path);
   ck_free(&b->ck);
   b->ck = ck;
-  b->restore_f = 1;
+  SA_CHECK(ck_setup_pass(b, 1));
   return 0;
 }
 
@@ -1620,7 +1638,17 @@ int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, cons
   free(buf);
   b->rolling = params->rolling_friction > 0;
   rc = setup_pre_box(b);
-  if (!rc) rc = send(b, "read_restart %s", rpath);
+  if (!rc) {
+    /* read_restart prints LIGGGHTS' version on stdout: to /dev/null while it reads */
+    fflush(stdout);
+    int saved = dup(1), devnull = open("/dev/null", O_WRONLY);
+    if (saved >= 0 && devnull >= 0) dup2(devnull, 1);
+    rc = send(b, "read_restart %s", rpath);
+    fflush(stdout);
+    if (saved >= 0 && devnull >= 0) dup2(saved, 1);
+    if (saved >= 0) close(saved);
+    if (devnull >= 0) close(devnull);
+  }
   remove(rpath);
   if (!rc) rc = ck_verify_grains(b, ck);
   if (!rc) rc = setup_post_box(b, params);
@@ -1634,7 +1662,11 @@ int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, cons
   b->is_setup = 1;
   b->need_setup = 1;
   b->resumed = 1;
-  b->restore_f = 1;
+  /* no mesh to wait for: the set-up pass now */
+  if (ck->nmesh == 0) {
+    SA_CHECK(dem_bridge_finalize_walls(b));
+    SA_CHECK(ck_setup_pass(b, 1));
+  }
   return 0;
 }
 
@@ -1665,17 +1697,18 @@ static int ck_mesh_check(const DemBridge *b, const char *name, int nverts, const
   return 0;
 }
 
-/* The first run after a checkpoint (written or read): a set-up pass (neighbour lists, sorting,
- * contact histories moved into place, forces from the full-step velocities), then the forces
- * and torques of the checkpoint's last step put back, so that the next step integrates with
- * what an uninterrupted run would have used. */
-static int ck_restore_forces(DemBridge *b) {
+/* The state at a checkpoint, written or read, made the same: a set-up pass (run 0: neighbour
+ * lists built, grains sorted, contact histories laid out, forces recomputed from the full-step
+ * velocities; a resumed LIGGGHTS cannot do without it) with the walls where they were at the
+ * checkpoint, then the forces and torques of the checkpoint's last step put back, so that the
+ * next step integrates with what an uninterrupted run uses. run0 = 0: the caller has just done
+ * the set-up pass (dem_bridge_finalize_walls). */
+static int ck_setup_pass(DemBridge *b, int run0) {
   const Checkpoint *ck = b->ck;
   SA_REQUIRE(ck, SA_ERR_INTERNAL, "no checkpoint to restore forces from");
-  SA_CHECK(send(b, "run 0 post no"));
+  if (run0) SA_CHECK(send(b, "run 0 post no"));
   b->ran = 1;
   b->need_setup = 0;
-  b->restore_f = 0;
   int n = nlocal(b); /* at most ck->count: a grain may have left the box in the set-up pass */
   if (n == 0) return 0;
   int *tag = lammps_extract_atom(b->lmp, "id");
