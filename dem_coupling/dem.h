@@ -16,7 +16,10 @@
  *   dem_bridge_insert_cylinder(b, ...)          pour grains into a region
  *   [dem_bridge_finalize_walls(b)]              else done by the first dem_bridge_run
  *   loop: dem_bridge_set_mesh_nodes / dem_bridge_run / dem_bridge_mesh_forces / particles
+ *         [/ dem_bridge_write_checkpoint after a run]
  *   dem_bridge_destroy(&b)
+ * Resume: dem_bridge_setup_from_checkpoint instead of dem_bridge_setup and the insertion, the
+ * same meshes added again (see "checkpoint and resume" below), then the loop.
  *
  * Material types: every grain has type 1; a wall mesh names the contact partner type
  * DEM_WALL_SILICONE (friction_wall) or DEM_WALL_STEEL (friction_piston: piston and barrel). */
@@ -75,7 +78,9 @@ int dem_bridge_setup(DemBridge *b, const DemParams *params);
  * letters, digits, '_' (at most 31). Forces on it are tracked (stress mesh). The mesh may later
  * be moved node by node with dem_bridge_set_mesh_nodes. Returns the mesh id (>= 0) in *id.
  * Refused (SA_ERR_INPUT): a vertex outside the box, a degenerate, needle-like (an angle below
- * 0.1 degree) or duplicate triangle. After dem_bridge_setup, before the walls are finalized. */
+ * 0.1 degree) or duplicate triangle. After dem_bridge_setup, before the walls are finalized.
+ * On a bridge resumed from a checkpoint the mesh must be the checkpoint's next one (refused
+ * otherwise, naming the difference); adding its last one finalizes the walls. */
 int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double *xyz, int ntri,
                         const int *tri, DemWallType type, int *id);
 /* Create the wall contact (one fix wall/gran over every mesh added so far, same contact model
@@ -128,10 +133,9 @@ int dem_bridge_write_restart(DemBridge *b, const char *path);
  * (grains, time step counter, grain-grain and grain-wall contact histories, wall nodes) and
  * what that restart lacks (node velocities of the meshes, the forces and torques of the last
  * step, the parameters, the insertion generator), framed with a version, sizes and a hash;
- * format in dem_bridge.c and docs/dem.md.
+ * format in dem_bridge.c, contents and measurements in docs/dem.md.
  *
- * Write (between two dem_bridge_run calls, after the wall meshes were set for the next step or
- * not, either way):
+ * Write, right after a dem_bridge_run and before the walls are moved for the next step:
  *   dem_bridge_write_checkpoint(b, path)
  * Resume, in a new process or on a new bridge:
  *   dem_bridge_create(log, &b)
@@ -140,10 +144,12 @@ int dem_bridge_write_restart(DemBridge *b, const char *path);
  *                                 the node positions of the checkpoint (bitwise); their node
  *                                 velocities come back from the checkpoint
  *   then the loop as before (dem_bridge_set_mesh_nodes / dem_bridge_run / ...).
- * The first dem_bridge_run after a checkpoint is written or read does a set-up pass and then
- * puts back the grain forces and torques of the checkpoint's last step: the continuation of
- * the bridge that wrote the checkpoint and of a bridge resumed from it are the same,
- * bit for bit (tests/dem/test_dem_checkpoint.c). */
+ * Both bridges, the writer right after writing and the resumed one when its last mesh is added,
+ * do a LIGGGHTS set-up pass (run 0: a resumed LIGGGHTS needs one) and then put back the grain
+ * forces and torques of the checkpoint's last step. Their continuations are the same bit for
+ * bit, and they differ from a run without a checkpoint by round-off (summation order)
+ * (tests/dem/test_dem_checkpoint.c). Until the next step, dem_bridge_mesh_forces returns the
+ * set-up pass's wall forces. */
 typedef struct {
   long long step; /* LIGGGHTS time step counter at the checkpoint */
   int count;      /* grains */
@@ -152,9 +158,10 @@ typedef struct {
 } DemCheckpointInfo;
 
 /* Write a checkpoint of the bridge's state to path [in] (any file name; the file appears
- * complete or not at all: a temporary file beside it is renamed). Finalizes the walls if the
- * caller had not. SA_ERR_IO if the file cannot be written (an existing one is then left as it
- * was). */
+ * complete or not at all: a temporary file beside it, fsync'ed, is renamed), then do the
+ * set-up pass described above. Finalizes the walls if the caller had not. SA_ERR_IO if the file
+ * cannot be written: checked before LIGGGHTS is asked for anything, so the bridge and an
+ * existing file are left as they were. SA_ERR_INPUT when there are no grains. */
 int dem_bridge_write_checkpoint(DemBridge *b, const char *path);
 /* Read the header of checkpoint path [in] into info [out], after checking the whole file
  * (type, version, byte order, sizes, hash). No bridge needed: for the caller's own checks
