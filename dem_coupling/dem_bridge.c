@@ -47,7 +47,7 @@ typedef struct {
 
 /* What a checkpoint holds beside LIGGGHTS' restart: the meshes (checked when they are added
  * again, velocities restored) and, per grain, the state at the checkpoint with the force and
- * torque of its last step (restored after the set-up pass that follows, see dem_bridge_run). */
+ * torque of its last step (put back after the set-up pass that follows, see ck_setup_pass). */
 typedef struct {
   char name[DEM_NAME_MAX + 1];
   int type, nverts, ntri;
@@ -61,7 +61,7 @@ typedef struct {
 } CkGrain;
 
 typedef struct {
-  char path[1024];   /* the file read (for messages); empty when written by this bridge */
+  char path[1024];   /* the file read or written (for messages) */
   int64_t step, count;
   uint64_t rng;
   DemParams p;
