@@ -16,7 +16,10 @@
  *   dem_bridge_insert_cylinder(b, ...)          pour grains into a region
  *   [dem_bridge_finalize_walls(b)]              else done by the first dem_bridge_run
  *   loop: dem_bridge_set_mesh_nodes / dem_bridge_run / dem_bridge_mesh_forces / particles
+ *         [/ dem_bridge_write_checkpoint after a run]
  *   dem_bridge_destroy(&b)
+ * Resume: dem_bridge_setup_from_checkpoint instead of dem_bridge_setup and the insertion, the
+ * same meshes added again (see "checkpoint and resume" below), then the loop.
  *
  * Material types: every grain has type 1; a wall mesh names the contact partner type
  * DEM_WALL_SILICONE (friction_wall) or DEM_WALL_STEEL (friction_piston: piston and barrel). */
@@ -75,7 +78,9 @@ int dem_bridge_setup(DemBridge *b, const DemParams *params);
  * letters, digits, '_' (at most 31). Forces on it are tracked (stress mesh). The mesh may later
  * be moved node by node with dem_bridge_set_mesh_nodes. Returns the mesh id (>= 0) in *id.
  * Refused (SA_ERR_INPUT): a vertex outside the box, a degenerate, needle-like (an angle below
- * 0.1 degree) or duplicate triangle. After dem_bridge_setup, before the walls are finalized. */
+ * 0.1 degree) or duplicate triangle. After dem_bridge_setup, before the walls are finalized.
+ * On a bridge resumed from a checkpoint the mesh must be the checkpoint's next one (refused
+ * otherwise, naming the difference); adding its last one finalizes the walls. */
 int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double *xyz, int ntri,
                         const int *tri, DemWallType type, int *id);
 /* Create the wall contact (one fix wall/gran over every mesh added so far, same contact model
@@ -112,6 +117,14 @@ int dem_bridge_count(DemBridge *b);
 /* Copy grain data out (any may be NULL): x, v, f [out] 3*n, radius [out] n; n = count. The
  * order is LIGGGHTS' own and may change from one dem_bridge_run to the next. */
 int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *radius);
+/* The grain-wall contacts LIGGGHTS tracks on mesh id (its fix contacthistory/mesh): grain id,
+ * triangle and tangential spring [m] of each, grain [out] max, tri [out] max, shear [out]
+ * 3 max; their number in *n (only the first max written). After the first run. For checks. */
+int dem_bridge_wall_contacts(DemBridge *b, int id, int max, int *grain, int *tri, double *shear,
+                             int *n);
+/* LIGGGHTS' id of each grain, id [out] n, in the order of dem_bridge_particles (ids stay with
+ * their grains across runs and checkpoints). */
+int dem_bridge_particle_ids(DemBridge *b, int *id);
 /* Largest overlap over all grain-grain and grain-wall contacts, as a fraction of the grain
  * diameter [-] (grain-grain: from positions; grain-wall: from the meshes). */
 double dem_bridge_max_overlap(DemBridge *b);
@@ -121,6 +134,54 @@ double dem_bridge_kinetic_energy(DemBridge *b);
  * path [in] (no whitespace and none of # $ * % & ' " in it). Reading one back is not part of
  * this interface yet. */
 int dem_bridge_write_restart(DemBridge *b, const char *path);
+/* ---- checkpoint and resume (issue 12). A checkpoint is one file holding LIGGGHTS' restart
+ * (grains, time step counter, grain-grain and grain-wall contact histories, wall nodes) and
+ * what that restart lacks (node velocities of the meshes, the forces and torques of the last
+ * step, the parameters, the insertion generator), framed with a version, sizes and a hash;
+ * format in dem_bridge.c, contents and measurements in docs/dem.md.
+ *
+ * Write, right after a dem_bridge_run and before the walls are moved for the next step:
+ *   dem_bridge_write_checkpoint(b, path)
+ * Resume, in a new process or on a new bridge:
+ *   dem_bridge_create(log, &b)
+ *   dem_bridge_setup_from_checkpoint(b, &params, path, expected_count)   instead of setup
+ *   dem_bridge_add_mesh(b, ...)   every mesh again, same order, names, types, triangles, and
+ *                                 the node positions of the checkpoint (bitwise); their node
+ *                                 velocities come back from the checkpoint
+ *   then the loop as before (dem_bridge_set_mesh_nodes / dem_bridge_run / ...).
+ * Both bridges, the writer right after writing and the resumed one when its last mesh is added,
+ * do a LIGGGHTS set-up pass (run 0: a resumed LIGGGHTS needs one) and then put back the grain
+ * forces and torques of the checkpoint's last step. Their continuations are the same bit for
+ * bit, and they differ from a run without a checkpoint by round-off (summation order)
+ * (tests/dem/test_dem_checkpoint.c). Until the next step, dem_bridge_mesh_forces returns the
+ * set-up pass's wall forces. */
+typedef struct {
+  long long step; /* LIGGGHTS time step counter at the checkpoint */
+  int count;      /* grains */
+  int nmesh;      /* wall meshes */
+  double diameter, dt; /* [m], [s] */
+} DemCheckpointInfo;
+
+/* Write a checkpoint of the bridge's state to path [in] (any file name; the file appears
+ * complete or not at all: a temporary file beside it, fsync'ed, is renamed), then do the
+ * set-up pass described above. Finalizes the walls if the caller had not. SA_ERR_IO if the file
+ * cannot be written: checked before LIGGGHTS is asked for anything, so the bridge and an
+ * existing file are left as they were. SA_ERR_INPUT when there are no grains. */
+int dem_bridge_write_checkpoint(DemBridge *b, const char *path);
+/* Read the header of checkpoint path [in] into info [out], after checking the whole file
+ * (type, version, byte order, sizes, hash). No bridge needed: for the caller's own checks
+ * (e.g. the step of its FEM state). */
+int dem_bridge_checkpoint_info(const char *path, DemCheckpointInfo *info);
+/* Set up a fresh bridge (instead of dem_bridge_setup) from checkpoint path [in]. params [in]
+ * must equal the checkpoint's, every field bitwise (a field that differs is named);
+ * expected_count >= 0 must equal its grain count (< 0: not checked). Every check on the file
+ * and the arguments happens before LIGGGHTS sees anything: a refusal (SA_ERR_IO for a file
+ * that cannot be read, SA_ERR_INPUT for a damaged, truncated or mismatching one, the message
+ * naming the file) leaves the bridge fresh, to be set up again. After LIGGGHTS has read the
+ * restart, the grains it holds are checked bitwise against the checkpoint (SA_ERR_LIBRARY;
+ * then only dem_bridge_destroy is left). */
+int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, const char *path,
+                                     int expected_count);
 /* Send one raw input-script command (validated by the caller; tests and studies only). */
 int dem_bridge_command(DemBridge *b, const char *cmd);
 void dem_bridge_destroy(DemBridge **b);

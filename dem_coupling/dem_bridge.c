@@ -23,7 +23,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <errno.h>
 #include <fcntl.h>
+#include <stddef.h>
 #include <unistd.h>
 
 #include "dem_shim.h"
@@ -39,8 +41,36 @@ typedef struct {
   double *xyz; /* current vertex positions (caller order) [owned] */
   int *tri;    /* caller triangles [owned] */
   int *idx;    /* 3*ntri: caller vertex of corner c of LIGGGHTS element id [owned] */
+  double *v;   /* node velocities last set (caller order), for checkpoints [owned] */
   void *shim;  /* the fix mesh/surface [borrowed from LIGGGHTS] */
 } DemMesh;
+
+/* What a checkpoint holds beside LIGGGHTS' restart: the meshes (checked when they are added
+ * again, velocities restored) and, per grain, the state at the checkpoint with the force and
+ * torque of its last step (put back after the set-up pass that follows, see ck_setup_pass). */
+typedef struct {
+  char name[DEM_NAME_MAX + 1];
+  int type, nverts, ntri;
+  int *tri;          /* [owned] */
+  double *xyz, *v;   /* [owned] */
+} CkMesh;
+
+typedef struct {
+  int64_t tag, type;
+  double x[3], v[3], omega[3], f[3], torque[3], radius, rmass;
+} CkGrain;
+
+typedef struct {
+  char path[1024];   /* the file read or written (for messages) */
+  int64_t step, count;
+  uint64_t rng;
+  DemParams p;
+  int nmesh;
+  CkMesh *mesh;      /* [owned] */
+  CkGrain *grain;    /* [owned] count records */
+  const unsigned char *restart; /* LIGGGHTS restart bytes [borrowed from the file buffer] */
+  uint64_t restart_bytes;
+} Checkpoint;
 
 struct DemBridge {
   void *lmp;
@@ -55,7 +85,15 @@ struct DemBridge {
   size_t cell_cap, next_cap;
   double *pos;
   size_t pos_cap;
+  /* the last checkpoint written or read; resumed: the meshes still to come are its */
+  Checkpoint *ck; /* [owned] */
+  int resumed;
 };
+
+static void ck_free(Checkpoint **ck);
+static int ck_mesh_check(const DemBridge *b, const char *name, int nverts, const double *xyz,
+                         int ntri, const int *tri, DemWallType type);
+static int ck_setup_pass(DemBridge *b, int run0);
 
 /* ---------------------------------------------------------------- closed forms */
 
@@ -304,8 +342,10 @@ void dem_bridge_destroy(DemBridge **pb) {
     free(b->mesh[i].xyz);
     free(b->mesh[i].tri);
     free(b->mesh[i].idx);
+    free(b->mesh[i].v);
   }
   free(b->mesh);
+  ck_free(&b->ck);
   free(b->cell_head);
   free(b->cell_next);
   free(b->pos);
@@ -378,23 +418,19 @@ static int params_check(const DemParams *p) {
   return 0;
 }
 
-int dem_bridge_setup(DemBridge *b, const DemParams *params) {
-  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
-  SA_REQUIRE(!b->is_setup, SA_ERR_INPUT, "dem_bridge_setup called twice");
-  SA_CHECK(params_check(params));
-  const DemParams *p = params;
-  b->p = *p;
-  b->rng = (uint64_t)p->seed * 0x2545F4914F6CDD1Dull;
-  b->rolling = p->rolling_friction > 0;
+/* Commands valid before the box exists (a fresh set-up and a resume both send them). */
+static int setup_pre_box(DemBridge *b) {
   static const char *pre[] = {
-      "units si", "atom_style granular", "atom_modify map array", "boundary f f f", "newton off",
-      "communicate single vel yes",
+      "atom_modify map array", "newton off", /* read_restart keeps the script's newton */
       /* the softened grains and the steel walls are outside LIGGGHTS' sanity range */
       "soft_particles yes", "hard_particles yes"};
   for (size_t i = 0; i < sizeof pre / sizeof *pre; i++) SA_CHECK(send(b, "%s", pre[i]));
-  SA_CHECK(send(b, "region simbox block %.17g %.17g %.17g %.17g %.17g %.17g units box", p->box_lo[0],
-                p->box_hi[0], p->box_lo[1], p->box_hi[1], p->box_lo[2], p->box_hi[2]));
-  SA_CHECK(send(b, "create_box 3 simbox"));
+  return 0;
+}
+
+/* Commands once the box exists: materials, contact model, integrator, gravity, time step. */
+static int setup_post_box(DemBridge *b, const DemParams *p) {
+  SA_CHECK(send(b, "communicate single vel yes"));
   /* spatial sorting with an explicit bin (LIGGGHTS derives it from the largest grain, and
    * aborts when there is none yet, e.g. at the set-up pass of dem_bridge_finalize_walls) */
   SA_CHECK(send(b, "atom_modify sort 1000 %.17g", p->diameter));
@@ -432,6 +468,24 @@ int dem_bridge_setup(DemBridge *b, const DemParams *params) {
                   p->gravity[1] / g, p->gravity[2] / g));
   SA_CHECK(send(b, "timestep %.17g", p->dt));
   SA_CHECK(send(b, "thermo_modify lost ignore norm no"));
+  return 0;
+}
+
+int dem_bridge_setup(DemBridge *b, const DemParams *params) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(!b->is_setup, SA_ERR_INPUT, "dem_bridge_setup called twice");
+  SA_CHECK(params_check(params));
+  const DemParams *p = params;
+  b->p = *p;
+  b->rng = (uint64_t)p->seed * 0x2545F4914F6CDD1Dull;
+  b->rolling = p->rolling_friction > 0;
+  static const char *pre[] = {"units si", "atom_style granular", "boundary f f f"};
+  for (size_t i = 0; i < sizeof pre / sizeof *pre; i++) SA_CHECK(send(b, "%s", pre[i]));
+  SA_CHECK(setup_pre_box(b));
+  SA_CHECK(send(b, "region simbox block %.17g %.17g %.17g %.17g %.17g %.17g units box", p->box_lo[0],
+                p->box_hi[0], p->box_lo[1], p->box_hi[1], p->box_lo[2], p->box_hi[2]));
+  SA_CHECK(send(b, "create_box 3 simbox"));
+  SA_CHECK(setup_post_box(b, p));
   b->is_setup = 1;
   b->need_setup = 1;
   return 0;
@@ -545,6 +599,7 @@ int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double
              "mesh '%s': wall type %d is neither DEM_WALL_SILICONE nor DEM_WALL_STEEL",
              name ? name : "", (int)type);
   SA_CHECK(mesh_check(b, name, nverts, xyz, ntri, tri));
+  if (b->resumed) SA_CHECK(ck_mesh_check(b, name, nverts, xyz, ntri, tri, type));
   if (b->nmesh == b->mesh_cap) {
     int cap = b->mesh_cap ? 2 * b->mesh_cap : 4;
     DemMesh *t = realloc(b->mesh, (size_t)cap * sizeof *t);
@@ -561,13 +616,16 @@ int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double
   m->xyz = malloc(3 * (size_t)nverts * sizeof *m->xyz);
   m->tri = malloc(3 * (size_t)ntri * sizeof *m->tri);
   m->idx = malloc(3 * (size_t)ntri * sizeof *m->idx);
-  if (!m->xyz || !m->tri || !m->idx) {
-    free(m->xyz), free(m->tri), free(m->idx);
+  m->v = calloc(3 * (size_t)nverts, sizeof *m->v);
+  if (!m->xyz || !m->tri || !m->idx || !m->v) {
+    free(m->xyz), free(m->tri), free(m->idx), free(m->v);
     return SA_ERROR(SA_ERR_MEMORY, "mesh '%s': cannot allocate %d vertices", name, nverts);
   }
   memcpy(m->xyz, xyz, 3 * (size_t)nverts * sizeof *xyz);
   memcpy(m->tri, tri, 3 * (size_t)ntri * sizeof *tri);
   memcpy(m->idx, tri, 3 * (size_t)ntri * sizeof *tri);
+  if (b->resumed) /* the node velocities of the checkpoint, until the caller sets others */
+    memcpy(m->v, b->ck->mesh[b->nmesh].v, 3 * (size_t)nverts * sizeof *m->v);
 
   char path[320];
   snprintf(path, sizeof path, "%s/%s.stl", b->tmpdir, name);
@@ -589,7 +647,7 @@ int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double
   }
   if (!ok) {
     remove(path);
-    free(m->xyz), free(m->tri), free(m->idx);
+    free(m->xyz), free(m->tri), free(m->idx), free(m->v);
     return SA_ERROR(SA_ERR_IO, "cannot write the temporary mesh file %s", path);
   }
   /* LIGGGHTS reads the file while creating the fix */
@@ -597,7 +655,7 @@ int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double
                 (int)type);
   remove(path);
   if (rc) {
-    free(m->xyz), free(m->tri), free(m->idx);
+    free(m->xyz), free(m->tri), free(m->idx), free(m->v);
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
   b->nmesh++;
@@ -610,6 +668,12 @@ int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double
              "cannot make mesh '%s' movable", name);
   b->need_setup = 1;
   *id = b->nmesh - 1;
+  if (b->resumed) {
+    /* the checkpoint's node velocities for the set-up pass, which follows the last mesh at
+     * once: with the walls where they were at the checkpoint (the caller moves them next) */
+    dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, m->v, 0);
+    if (b->nmesh == b->ck->nmesh) SA_CHECK(dem_bridge_finalize_walls(b));
+  }
   return 0;
 }
 
@@ -649,6 +713,10 @@ int dem_bridge_finalize_walls(DemBridge *b) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_finalize_walls before dem_bridge_setup");
   if (b->walls_done) return 0;
+  if (b->resumed)
+    SA_REQUIRE(b->nmesh == b->ck->nmesh, SA_ERR_INPUT,
+               "checkpoint '%s' has %d wall meshes, %d were added before the first run",
+               b->ck->path, b->ck->nmesh, b->nmesh);
   b->walls_done = 1;
   if (b->nmesh == 0) return 0;
   char list[DEM_CMD_MAX / 2] = "";
@@ -665,6 +733,15 @@ int dem_bridge_finalize_walls(DemBridge *b) {
   b->ran = 1;
   b->need_setup = 0;
   for (int i = 0; i < b->nmesh; i++) SA_CHECK(mesh_map(b, &b->mesh[i]));
+  /* node velocities are not in LIGGGHTS' restart ("v" is restart_no): those of the checkpoint
+   * or the caller's since (the set-up pass keeps them; set again once the map is checked) */
+  if (b->resumed) {
+    for (int i = 0; i < b->nmesh; i++) {
+      DemMesh *m = &b->mesh[i];
+      dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, m->v, 0);
+    }
+    SA_CHECK(ck_setup_pass(b, 0)); /* the run 0 above was the set-up pass */
+  }
   return 0;
 }
 
@@ -692,6 +769,10 @@ int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const dou
                xyz[3 * i + 1], xyz[3 * i + 2]);
   }
   memcpy(m->xyz, xyz, 3 * (size_t)m->nverts * sizeof *xyz);
+  if (v)
+    memcpy(m->v, v, 3 * (size_t)m->nverts * sizeof *v);
+  else
+    memset(m->v, 0, 3 * (size_t)m->nverts * sizeof *m->v);
   dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, v, b->ran);
   return 0;
 }
@@ -925,6 +1006,30 @@ int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *
   return 0;
 }
 
+int dem_bridge_wall_contacts(DemBridge *b, int id, int max, int *grain, int *tri, double *shear,
+                             int *n) {
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  SA_REQUIRE(n && max >= 0 && (max == 0 || (grain && tri && shear)), SA_ERR_INPUT,
+             "dem_bridge_wall_contacts: no output arrays");
+  *n = 0;
+  SA_REQUIRE(b->ran, SA_ERR_INPUT, "dem_bridge_wall_contacts before the first run");
+  int k = dem_shim_mesh_contacts(b->lmp, m->shim, max, grain, tri, shear);
+  SA_REQUIRE(k >= 0, SA_ERR_LIBRARY, "mesh '%s' has no contact history", m->fix_id + 5);
+  *n = k;
+  return 0;
+}
+
+int dem_bridge_particle_ids(DemBridge *b, int *id) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  int n = nlocal(b);
+  int *tag = lammps_extract_atom(b->lmp, "id");
+  SA_REQUIRE(tag || n == 0, SA_ERR_LIBRARY, "LIGGGHTS has no atom id array");
+  SA_REQUIRE(id || n == 0, SA_ERR_INPUT, "dem_bridge_particle_ids: no output array");
+  if (n) memcpy(id, tag, (size_t)n * sizeof *id);
+  return 0;
+}
+
 double dem_bridge_kinetic_energy(DemBridge *b) {
   if (!b || !b->lmp) return 0;
   int n = nlocal(b);
@@ -1012,5 +1117,629 @@ int dem_bridge_write_restart(DemBridge *b, const char *path) {
   SA_REQUIRE(f, SA_ERR_IO, "cannot open the restart file '%s'", path);
   fclose(f);
   SA_CHECK(send(b, "write_restart %s", path));
+  return 0;
+}
+
+/* ---------------------------------------------------------------- checkpoint and resume
+ *
+ * One file, written atomically (temporary file in the same directory, fsync, rename), native
+ * byte order (checked), little framing:
+ *   offset 0  char[8]  "SADEMCKP"
+ *          8  uint32   version (1)
+ *         12  uint32   0x01020304 (byte-order mark)
+ *         16  int64    LIGGGHTS time step counter
+ *         24  int64    grain count
+ *         32  uint64   state of the bridge's insertion generator
+ *         40  DemParams, field by field (22 doubles, then int64 seed)
+ *             int32 nmesh; per mesh: char[32] name, int32 type, nverts, ntri,
+ *               int32 tri[3 ntri], double xyz[3 nverts], double v[3 nverts]
+ *             per grain (sorted by tag): int64 tag, int64 type, double x[3], v[3], omega[3],
+ *               f[3], torque[3], radius, rmass
+ *             int64 n; n bytes: LIGGGHTS' own restart file (write_restart)
+ *   last 8    uint64   FNV-1a hash of every byte before it
+ * LIGGGHTS' restart carries the grains, the time step counter, the grain-grain contact history
+ * (fix contacthistory, per atom), the grain-wall contact history (fix contacthistory/mesh
+ * `tracker_mesh_<name>`, per atom: triangle id and tangential spring) and the wall meshes'
+ * nodes (fix mesh/surface, global). It does not carry the meshes' node velocities (element
+ * property "v" is restart_no), the forces of the last step (a run's set-up recomputes them
+ * from the full-step velocities, where the step itself used the half-step ones) or this
+ * bridge's state: those are the framing's. Everything is validated before LIGGGHTS reads a
+ * byte (it aborts the process on a bad restart file). */
+
+#define CK_MAGIC "SADEMCKP"
+#define CK_VERSION 1u
+#define CK_BOM 0x01020304u
+#define CK_PATH_MAX 1000
+
+static const struct {
+  const char *name;
+  size_t off;
+} ck_fields[] = {
+#define F(x) {#x, offsetof(DemParams, x)}
+    F(diameter),        F(density),       F(young),       F(poisson),        F(restitution),
+    F(friction),        F(friction_wall), F(friction_piston), F(rolling_friction),
+    F(wall_young),      F(wall_poisson),  F(dt),          F(dt_safety),      F(gravity[0]),
+    F(gravity[1]),      F(gravity[2]),    F(box_lo[0]),   F(box_lo[1]),      F(box_lo[2]),
+    F(box_hi[0]),       F(box_hi[1]),     F(box_hi[2]),   F(skin),
+#undef F
+};
+
+static uint64_t fnv1a(const unsigned char *d, size_t n) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i < n; i++) h = (h ^ d[i]) * 0x100000001b3ull;
+  return h;
+}
+
+static void ck_free(Checkpoint **pck) {
+  if (!pck || !*pck) return;
+  Checkpoint *ck = *pck;
+  for (int i = 0; i < ck->nmesh; i++) {
+    free(ck->mesh[i].tri);
+    free(ck->mesh[i].xyz);
+    free(ck->mesh[i].v);
+  }
+  free(ck->mesh);
+  free(ck->grain);
+  free(ck);
+  *pck = NULL;
+}
+
+static int cmp_grain(const void *x, const void *y) {
+  int64_t a = ((const CkGrain *)x)->tag, c = ((const CkGrain *)y)->tag;
+  return a < c ? -1 : a > c;
+}
+
+static const CkGrain *ck_find(const Checkpoint *ck, int64_t tag) {
+  CkGrain key;
+  key.tag = tag;
+  return bsearch(&key, ck->grain, (size_t)ck->count, sizeof key, cmp_grain);
+}
+
+/* growable byte buffer; err set on allocation failure */
+typedef struct {
+  unsigned char *d;
+  size_t n, cap;
+  int err;
+} Buf;
+
+static void put(Buf *w, const void *p, size_t len) {
+  if (w->err) return;
+  if (w->n + len > w->cap) {
+    size_t c = 2 * (w->n + len) + 4096;
+    unsigned char *t = realloc(w->d, c);
+    if (!t) {
+      w->err = 1;
+      return;
+    }
+    w->d = t, w->cap = c;
+  }
+  memcpy(w->d + w->n, p, len);
+  w->n += len;
+}
+
+static void put_i32(Buf *w, int32_t v) { put(w, &v, sizeof v); }
+static void put_i64(Buf *w, int64_t v) { put(w, &v, sizeof v); }
+
+/* bounds-checked reader over a whole file in memory */
+typedef struct {
+  const unsigned char *d;
+  size_t n, off;
+  const char *path;
+} Rd;
+
+static int get(Rd *r, void *p, size_t len, const char *what) {
+  SA_REQUIRE(len <= r->n && r->off <= r->n - len, SA_ERR_INPUT,
+             "checkpoint '%s' is truncated: %s needs bytes %zu..%zu, the file has %zu bytes",
+             r->path, what, r->off, r->off + len, r->n);
+  if (p) memcpy(p, r->d + r->off, len);
+  r->off += len;
+  return 0;
+}
+
+/* Builds the in-memory checkpoint of the bridge's current state (restart bytes not included). */
+static int ck_capture(DemBridge *b, Checkpoint **out) {
+  Checkpoint *ck;
+  SA_CALLOC(ck, 1);
+  *out = ck;
+  int64_t *step = lammps_extract_global(b->lmp, "ntimestep");
+  SA_REQUIRE(step, SA_ERR_LIBRARY, "LIGGGHTS has no time step counter");
+  ck->step = *step;
+  ck->count = nlocal(b);
+  ck->rng = b->rng;
+  ck->p = b->p;
+  ck->nmesh = b->nmesh;
+  SA_CALLOC(ck->mesh, b->nmesh);
+  for (int i = 0; i < b->nmesh; i++) {
+    const DemMesh *m = &b->mesh[i];
+    CkMesh *c = &ck->mesh[i];
+    snprintf(c->name, sizeof c->name, "%s", m->fix_id + 5);
+    c->type = (int)m->type, c->nverts = m->nverts, c->ntri = m->ntri;
+    SA_CALLOC(c->tri, 3 * (size_t)m->ntri);
+    SA_CALLOC(c->xyz, 3 * (size_t)m->nverts);
+    SA_CALLOC(c->v, 3 * (size_t)m->nverts);
+    memcpy(c->tri, m->tri, 3 * (size_t)m->ntri * sizeof *c->tri);
+    memcpy(c->xyz, m->xyz, 3 * (size_t)m->nverts * sizeof *c->xyz);
+    memcpy(c->v, m->v, 3 * (size_t)m->nverts * sizeof *c->v);
+  }
+  SA_CALLOC(ck->grain, ck->count);
+  int n = (int)ck->count;
+  if (n == 0) return 0;
+  int *tag = lammps_extract_atom(b->lmp, "id"), *type = lammps_extract_atom(b->lmp, "type");
+  double **x = lammps_extract_atom(b->lmp, "x"), **v = lammps_extract_atom(b->lmp, "v"),
+         **w = lammps_extract_atom(b->lmp, "omega"), **f = lammps_extract_atom(b->lmp, "f"),
+         **t = lammps_extract_atom(b->lmp, "torque");
+  double *rad = lammps_extract_atom(b->lmp, "radius"), *rm = lammps_extract_atom(b->lmp, "rmass");
+  SA_REQUIRE(tag && type && x && v && w && f && t && rad && rm, SA_ERR_LIBRARY,
+             "LIGGGHTS lacks a per-grain array of atom style granular");
+  for (int i = 0; i < n; i++) {
+    CkGrain *g = &ck->grain[i];
+    g->tag = tag[i], g->type = type[i];
+    memcpy(g->x, x[i], sizeof g->x), memcpy(g->v, v[i], sizeof g->v);
+    memcpy(g->omega, w[i], sizeof g->omega), memcpy(g->f, f[i], sizeof g->f);
+    memcpy(g->torque, t[i], sizeof g->torque);
+    g->radius = rad[i], g->rmass = rm[i];
+  }
+  qsort(ck->grain, (size_t)n, sizeof *ck->grain, cmp_grain);
+  for (int i = 1; i < n; i++)
+    SA_REQUIRE(ck->grain[i].tag != ck->grain[i - 1].tag, SA_ERR_LIBRARY,
+               "two grains share the tag %lld", (long long)ck->grain[i].tag);
+  return 0;
+}
+
+static void ck_serialise(const Checkpoint *ck, const unsigned char *restart, uint64_t nrestart,
+                         Buf *w) {
+  put(w, CK_MAGIC, 8);
+  uint32_t u = CK_VERSION;
+  put(w, &u, 4);
+  u = CK_BOM;
+  put(w, &u, 4);
+  put_i64(w, ck->step);
+  put_i64(w, ck->count);
+  put(w, &ck->rng, 8);
+  for (size_t k = 0; k < sizeof ck_fields / sizeof *ck_fields; k++)
+    put(w, (const char *)&ck->p + ck_fields[k].off, sizeof(double));
+  put_i64(w, ck->p.seed);
+  put_i32(w, ck->nmesh);
+  for (int i = 0; i < ck->nmesh; i++) {
+    const CkMesh *m = &ck->mesh[i];
+    char name[32] = {0};
+    memcpy(name, m->name, strlen(m->name));
+    put(w, name, 32);
+    put_i32(w, m->type), put_i32(w, m->nverts), put_i32(w, m->ntri);
+    for (int k = 0; k < 3 * m->ntri; k++) put_i32(w, m->tri[k]);
+    put(w, m->xyz, 3 * (size_t)m->nverts * sizeof(double));
+    put(w, m->v, 3 * (size_t)m->nverts * sizeof(double));
+  }
+  for (int64_t i = 0; i < ck->count; i++) {
+    const CkGrain *g = &ck->grain[i];
+    put_i64(w, g->tag), put_i64(w, g->type);
+    put(w, g->x, sizeof g->x), put(w, g->v, sizeof g->v), put(w, g->omega, sizeof g->omega);
+    put(w, g->f, sizeof g->f), put(w, g->torque, sizeof g->torque);
+    put(w, &g->radius, 8), put(w, &g->rmass, 8);
+  }
+  put_i64(w, (int64_t)nrestart);
+  put(w, restart, nrestart);
+  if (w->err) return;
+  uint64_t h = fnv1a(w->d, w->n);
+  put(w, &h, 8);
+}
+
+/* Parses and checks a whole checkpoint file d[0..n) read from path; *out [owned] borrows the
+ * restart bytes from d. */
+static int ck_parse(const unsigned char *d, size_t n, const char *path, Checkpoint **out) {
+  *out = NULL;
+  Rd r = {d, n, 0, path};
+  char magic[8] = {0};
+  uint32_t version = 0, bom = 0;
+  SA_CHECK(get(&r, magic, 8, "the file type"));
+  SA_REQUIRE(!memcmp(magic, CK_MAGIC, 8), SA_ERR_INPUT,
+             "'%s' is not a softact DEM checkpoint (it does not start with " CK_MAGIC ")", path);
+  SA_CHECK(get(&r, &version, 4, "the version"));
+  SA_REQUIRE(version == CK_VERSION, SA_ERR_INPUT,
+             "checkpoint '%s' has format version %u, this build reads version %u", path, version,
+             CK_VERSION);
+  SA_CHECK(get(&r, &bom, 4, "the byte-order mark"));
+  SA_REQUIRE(bom == CK_BOM, SA_ERR_INPUT,
+             "checkpoint '%s' was written on a machine of another byte order", path);
+  /* the hash first: a truncated or damaged file is named as such before any field is used */
+  SA_REQUIRE(n >= 16 + 8, SA_ERR_INPUT, "checkpoint '%s' is truncated: %zu bytes", path, n);
+  uint64_t h;
+  memcpy(&h, d + n - 8, 8);
+  Checkpoint *ck = calloc(1, sizeof *ck);
+  SA_REQUIRE(ck, SA_ERR_MEMORY, "cannot allocate a checkpoint");
+  snprintf(ck->path, sizeof ck->path, "%s", path);
+  int rc = 0;
+#define CK_TRY(call)          \
+  do {                        \
+    if ((rc = (call)) != 0) { \
+      ck_free(&ck);           \
+      SA_CHECK(rc);           \
+    }                         \
+  } while (0)
+#define CK_REQ(cond, ...)                                    \
+  do {                                                       \
+    if (!(cond)) {                                           \
+      int e_ = SA_ERROR(SA_ERR_INPUT, __VA_ARGS__);          \
+      ck_free(&ck);                                          \
+      return e_;                                             \
+    }                                                        \
+  } while (0)
+  r.n = n - 8; /* the fields end where the hash begins */
+  CK_TRY(get(&r, &ck->step, 8, "the time step counter"));
+  CK_TRY(get(&r, &ck->count, 8, "the grain count"));
+  CK_TRY(get(&r, &ck->rng, 8, "the generator state"));
+  for (size_t k = 0; k < sizeof ck_fields / sizeof *ck_fields; k++)
+    CK_TRY(get(&r, (char *)&ck->p + ck_fields[k].off, 8, "the parameters"));
+  int64_t seed = 0;
+  CK_TRY(get(&r, &seed, 8, "the parameters"));
+  ck->p.seed = (int)seed;
+  int32_t nmesh = 0;
+  CK_TRY(get(&r, &nmesh, 4, "the mesh count"));
+  CK_REQ(nmesh >= 0 && (size_t)nmesh <= (r.n - r.off) / 44,
+         "checkpoint '%s' is damaged: %d wall meshes", path, nmesh);
+  ck->mesh = calloc(nmesh ? (size_t)nmesh : 1, sizeof *ck->mesh);
+  CK_REQ(ck->mesh, "cannot allocate %d meshes", nmesh);
+  for (int i = 0; i < nmesh; i++) {
+    CkMesh *m = &ck->mesh[i];
+    ck->nmesh = i + 1;
+    int32_t t[3];
+    CK_TRY(get(&r, m->name, 32, "a mesh name"));
+    m->name[DEM_NAME_MAX] = 0;
+    CK_TRY(get(&r, t, 12, "a mesh size"));
+    m->type = t[0], m->nverts = t[1], m->ntri = t[2];
+    size_t left = r.n - r.off;
+    CK_REQ(m->nverts >= 3 && m->ntri >= 1 && (size_t)m->ntri <= left / 12 &&
+               (size_t)m->nverts <= left / 48,
+           "checkpoint '%s' is damaged or truncated: mesh %d has %d vertices and %d triangles",
+           path, i, m->nverts, m->ntri);
+    m->tri = malloc(3 * (size_t)m->ntri * sizeof *m->tri);
+    m->xyz = malloc(3 * (size_t)m->nverts * sizeof *m->xyz);
+    m->v = malloc(3 * (size_t)m->nverts * sizeof *m->v);
+    CK_REQ(m->tri && m->xyz && m->v, "cannot allocate mesh %d of checkpoint '%s'", i, path);
+    for (int k = 0; k < 3 * m->ntri; k++) {
+      int32_t q = 0;
+      CK_TRY(get(&r, &q, 4, "a mesh triangle"));
+      m->tri[k] = q;
+    }
+    CK_TRY(get(&r, m->xyz, 3 * (size_t)m->nverts * 8, "mesh nodes"));
+    CK_TRY(get(&r, m->v, 3 * (size_t)m->nverts * 8, "mesh node velocities"));
+  }
+  const size_t grain_bytes = 16 + 17 * 8;
+  CK_REQ(ck->count >= 0 && ck->count <= INT32_MAX &&
+             (uint64_t)ck->count <= (r.n - r.off) / grain_bytes,
+         "checkpoint '%s' is damaged or truncated: %lld grains do not fit in its %zu bytes", path,
+         (long long)ck->count, n);
+  ck->grain = calloc(ck->count ? (size_t)ck->count : 1, sizeof *ck->grain);
+  CK_REQ(ck->grain, "cannot allocate %lld grains", (long long)ck->count);
+  for (int64_t i = 0; i < ck->count; i++) {
+    CkGrain *g = &ck->grain[i];
+    CK_TRY(get(&r, &g->tag, 8, "a grain"));
+    CK_TRY(get(&r, &g->type, 8, "a grain"));
+    CK_TRY(get(&r, g->x, 3 * 8, "a grain"));
+    CK_TRY(get(&r, g->v, 3 * 8, "a grain"));
+    CK_TRY(get(&r, g->omega, 3 * 8, "a grain"));
+    CK_TRY(get(&r, g->f, 3 * 8, "a grain"));
+    CK_TRY(get(&r, g->torque, 3 * 8, "a grain"));
+    CK_TRY(get(&r, &g->radius, 8, "a grain"));
+    CK_TRY(get(&r, &g->rmass, 8, "a grain"));
+    CK_REQ(i == 0 || g->tag > ck->grain[i - 1].tag,
+           "checkpoint '%s' is damaged: grain tags are not increasing", path);
+  }
+  CK_TRY(get(&r, &ck->restart_bytes, 8, "the LIGGGHTS restart size"));
+  CK_REQ(ck->restart_bytes == r.n - r.off,
+         "checkpoint '%s' is damaged or truncated: the LIGGGHTS restart should have %llu bytes, "
+         "%zu are left",
+         path, (unsigned long long)ck->restart_bytes, r.n - r.off);
+  ck->restart = d + r.off;
+  CK_REQ(fnv1a(d, n - 8) == h,
+         "checkpoint '%s' is damaged: its hash does not match its contents", path);
+#undef CK_TRY
+#undef CK_REQ
+  *out = ck;
+  return 0;
+}
+
+/* Reads path whole into *buf [owned] of *n bytes. */
+static int read_whole(const char *path, unsigned char **buf, size_t *n) {
+  *buf = NULL, *n = 0;
+  FILE *f = fopen(path, "rb");
+  SA_REQUIRE(f, SA_ERR_IO, "cannot open the checkpoint '%s': %s", path, strerror(errno));
+  long size = -1;
+  if (fseek(f, 0, SEEK_END) == 0) size = ftell(f);
+  if (size < 0 || fseek(f, 0, SEEK_SET) != 0) {
+    fclose(f);
+    return SA_ERROR(SA_ERR_IO, "cannot read the checkpoint '%s'", path);
+  }
+  unsigned char *d = malloc(size ? (size_t)size : 1);
+  if (!d) {
+    fclose(f);
+    return SA_ERROR(SA_ERR_MEMORY, "cannot allocate %ld bytes for the checkpoint '%s'", size, path);
+  }
+  size_t got = fread(d, 1, (size_t)size, f);
+  fclose(f);
+  if (got != (size_t)size) {
+    free(d);
+    return SA_ERROR(SA_ERR_IO, "cannot read the checkpoint '%s' (%zu of %ld bytes)", path, got,
+                    size);
+  }
+  *buf = d, *n = (size_t)size;
+  return 0;
+}
+
+/* The temporary file beside path that becomes path (opened before LIGGGHTS is asked for
+ * anything, so that an unwritable place changes nothing). */
+static int tmp_open(const char *path, char *tmp, size_t len, FILE **f) {
+  snprintf(tmp, len, "%s.tmp.%ld", path, (long)getpid());
+  *f = fopen(tmp, "wb");
+  SA_REQUIRE(*f, SA_ERR_IO, "cannot write the checkpoint '%s' (temporary file '%s': %s)", path, tmp,
+             strerror(errno));
+  return 0;
+}
+
+/* Writes n bytes d to the open temporary file f, flushes it to disk, renames it to path. */
+static int tmp_commit(FILE *f, const char *tmp, const char *path, const unsigned char *d,
+                      size_t n) {
+  int ok = fwrite(d, 1, n, f) == n;
+  ok = fflush(f) == 0 && ok;
+  ok = fsync(fileno(f)) == 0 && ok;
+  ok = fclose(f) == 0 && ok;
+  if (!ok || rename(tmp, path) != 0) {
+    int e = errno;
+    remove(tmp);
+    return SA_ERROR(SA_ERR_IO, "cannot write the checkpoint '%s': %s", path, strerror(e));
+  }
+  /* the rename itself reaches the disk with the directory */
+  char dir[CK_PATH_MAX + 1];
+  snprintf(dir, sizeof dir, "%s", path);
+  char *slash = strrchr(dir, '/');
+  if (slash == dir) slash[1] = 0;
+  else if (slash) *slash = 0;
+  else snprintf(dir, sizeof dir, ".");
+  int fd = open(dir, O_RDONLY);
+  if (fd >= 0) fsync(fd), close(fd);
+  return 0;
+}
+
+int dem_bridge_write_checkpoint(DemBridge *b, const char *path) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_write_checkpoint before dem_bridge_setup");
+  SA_REQUIRE(path && *path && strlen(path) < CK_PATH_MAX, SA_ERR_INPUT,
+             "checkpoint path must be non-empty and shorter than %d characters", CK_PATH_MAX);
+  /* LIGGGHTS aborts in write_restart when it has no grain */
+  SA_REQUIRE(nlocal(b) > 0, SA_ERR_INPUT, "checkpoint '%s': there are no grains to checkpoint",
+             path);
+  char tmp[CK_PATH_MAX + 64];
+  FILE *out = NULL;
+  SA_CHECK(tmp_open(path, tmp, sizeof tmp, &out));
+  char rpath[320];
+  snprintf(rpath, sizeof rpath, "%s/checkpoint.restart", b->tmpdir);
+  FILE *f = fopen(rpath, "wb"); /* LIGGGHTS aborts if it cannot open the file: try first */
+  int rc = f ? 0 : SA_ERROR(SA_ERR_IO, "cannot open the temporary restart file '%s'", rpath);
+  if (f) fclose(f);
+  if (!rc) rc = dem_bridge_finalize_walls(b);
+  if (!rc) rc = send(b, "write_restart %s", rpath);
+  unsigned char *restart = NULL;
+  size_t nrestart = 0;
+  if (!rc) rc = read_whole(rpath, &restart, &nrestart);
+  remove(rpath);
+  Checkpoint *ck = NULL;
+  Buf w = {0};
+  if (!rc) rc = ck_capture(b, &ck);
+  if (!rc) {
+    ck_serialise(ck, restart, nrestart, &w);
+    if (w.err) rc = SA_ERROR(SA_ERR_MEMORY, "cannot allocate the checkpoint '%s'", path);
+  }
+  free(restart);
+  if (!rc) rc = tmp_commit(out, tmp, path, w.d, w.n);
+  else fclose(out), remove(tmp);
+  free(w.d);
+  if (rc) {
+    ck_free(&ck);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  /* continue the way a resumed bridge does */
+  snprintf(ck->path, sizeof ck->path, "%s", path);
+  ck_free(&b->ck);
+  b->ck = ck;
+  SA_CHECK(ck_setup_pass(b, 1));
+  return 0;
+}
+
+static int ck_load(const char *path, unsigned char **buf, Checkpoint **ck) {
+  *buf = NULL, *ck = NULL;
+  SA_REQUIRE(path && *path && strlen(path) < CK_PATH_MAX, SA_ERR_INPUT,
+             "checkpoint path must be non-empty and shorter than %d characters", CK_PATH_MAX);
+  size_t n;
+  SA_CHECK(read_whole(path, buf, &n));
+  int rc = ck_parse(*buf, n, path, ck);
+  if (rc) {
+    free(*buf);
+    *buf = NULL;
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  return 0;
+}
+
+int dem_bridge_checkpoint_info(const char *path, DemCheckpointInfo *info) {
+  SA_REQUIRE(info, SA_ERR_INTERNAL, "dem_bridge_checkpoint_info: no output");
+  memset(info, 0, sizeof *info);
+  unsigned char *buf;
+  Checkpoint *ck;
+  SA_CHECK(ck_load(path, &buf, &ck));
+  info->step = ck->step;
+  info->count = (int)ck->count;
+  info->nmesh = ck->nmesh;
+  info->diameter = ck->p.diameter;
+  info->dt = ck->p.dt;
+  ck_free(&ck);
+  free(buf);
+  return 0;
+}
+
+/* The checkpoint's params against the caller's, field by field (bitwise: a resumed run must
+ * be the same run). */
+static int ck_params_match(const Checkpoint *ck, const DemParams *p) {
+  for (size_t k = 0; k < sizeof ck_fields / sizeof *ck_fields; k++) {
+    double a = *(const double *)((const char *)&ck->p + ck_fields[k].off);
+    double c = *(const double *)((const char *)p + ck_fields[k].off);
+    SA_REQUIRE(memcmp(&a, &c, sizeof a) == 0, SA_ERR_INPUT,
+               "checkpoint '%s' was written with %s = %.17g, the run has %s = %.17g", ck->path,
+               ck_fields[k].name, a, ck_fields[k].name, c);
+  }
+  SA_REQUIRE(ck->p.seed == p->seed, SA_ERR_INPUT,
+             "checkpoint '%s' was written with seed = %d, the run has seed = %d", ck->path,
+             ck->p.seed, p->seed);
+  return 0;
+}
+
+/* After read_restart: LIGGGHTS holds exactly the grains of the framing, bit for bit. */
+static int ck_verify_grains(DemBridge *b, const Checkpoint *ck) {
+  int64_t *step = lammps_extract_global(b->lmp, "ntimestep");
+  SA_REQUIRE(step && *step == ck->step, SA_ERR_LIBRARY,
+             "LIGGGHTS restored time step %lld from checkpoint '%s', which was written at %lld",
+             step ? (long long)*step : -1LL, ck->path, (long long)ck->step);
+  int n = nlocal(b);
+  SA_REQUIRE(n == ck->count, SA_ERR_LIBRARY,
+             "LIGGGHTS restored %d grains from checkpoint '%s', which holds %lld", n, ck->path,
+             (long long)ck->count);
+  if (n == 0) return 0;
+  int *tag = lammps_extract_atom(b->lmp, "id"), *type = lammps_extract_atom(b->lmp, "type");
+  double **x = lammps_extract_atom(b->lmp, "x"), **v = lammps_extract_atom(b->lmp, "v"),
+         **w = lammps_extract_atom(b->lmp, "omega");
+  double *rad = lammps_extract_atom(b->lmp, "radius"), *rm = lammps_extract_atom(b->lmp, "rmass");
+  SA_REQUIRE(tag && type && x && v && w && rad && rm, SA_ERR_LIBRARY,
+             "LIGGGHTS lacks a per-grain array of atom style granular");
+  for (int i = 0; i < n; i++) {
+    const CkGrain *g = ck_find(ck, tag[i]);
+    SA_REQUIRE(g, SA_ERR_LIBRARY, "LIGGGHTS restored grain %d, which checkpoint '%s' does not hold",
+               tag[i], ck->path);
+    int same = g->type == type[i] && !memcmp(g->x, x[i], sizeof g->x) &&
+               !memcmp(g->v, v[i], sizeof g->v) && !memcmp(g->omega, w[i], sizeof g->omega) &&
+               !memcmp(&g->radius, &rad[i], 8) && !memcmp(&g->rmass, &rm[i], 8);
+    SA_REQUIRE(same, SA_ERR_LIBRARY,
+               "LIGGGHTS restored grain %d of checkpoint '%s' with another type, position, "
+               "velocity, spin, radius or mass than was saved",
+               tag[i], ck->path);
+  }
+  return 0;
+}
+
+int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, const char *path,
+                                     int expected_count) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(!b->is_setup, SA_ERR_INPUT,
+             "dem_bridge_setup_from_checkpoint on a bridge already set up");
+  SA_CHECK(params_check(params));
+  unsigned char *buf;
+  Checkpoint *ck;
+  SA_CHECK(ck_load(path, &buf, &ck));
+  int rc = ck_params_match(ck, params);
+  if (!rc && expected_count >= 0 && ck->count != expected_count)
+    rc = SA_ERROR(SA_ERR_INPUT, "checkpoint '%s' holds %lld grains, the run expects %d", path,
+                  (long long)ck->count, expected_count);
+  /* LIGGGHTS reads its part from a file of its own */
+  char rpath[320];
+  snprintf(rpath, sizeof rpath, "%s/resume.restart", b->tmpdir);
+  if (!rc) {
+    FILE *f = fopen(rpath, "wb");
+    int ok = f && fwrite(ck->restart, 1, ck->restart_bytes, f) == ck->restart_bytes;
+    if (f) ok = (fclose(f) == 0) && ok;
+    if (!ok) {
+      remove(rpath);
+      rc = SA_ERROR(SA_ERR_IO, "cannot write the temporary restart file '%s'", rpath);
+    }
+  }
+  if (rc) {
+    ck_free(&ck);
+    free(buf);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  /* from here on LIGGGHTS holds state: a failure leaves a bridge only fit for destroy */
+  ck->restart = NULL;
+  free(buf);
+  b->rolling = params->rolling_friction > 0;
+  rc = setup_pre_box(b);
+  if (!rc) {
+    /* read_restart prints LIGGGHTS' version on stdout: to /dev/null while it reads */
+    fflush(stdout);
+    int saved = dup(1), devnull = open("/dev/null", O_WRONLY);
+    if (saved >= 0 && devnull >= 0) dup2(devnull, 1);
+    rc = send(b, "read_restart %s", rpath);
+    fflush(stdout);
+    if (saved >= 0 && devnull >= 0) dup2(saved, 1);
+    if (saved >= 0) close(saved);
+    if (devnull >= 0) close(devnull);
+  }
+  remove(rpath);
+  if (!rc) rc = ck_verify_grains(b, ck);
+  if (!rc) rc = setup_post_box(b, params);
+  if (rc) {
+    ck_free(&ck);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  b->p = *params;
+  b->rng = ck->rng;
+  b->ck = ck;
+  b->is_setup = 1;
+  b->need_setup = 1;
+  b->resumed = 1;
+  /* no mesh to wait for: the set-up pass now */
+  if (ck->nmesh == 0) {
+    SA_CHECK(dem_bridge_finalize_walls(b));
+    SA_CHECK(ck_setup_pass(b, 1));
+  }
+  return 0;
+}
+
+static int ck_mesh_check(const DemBridge *b, const char *name, int nverts, const double *xyz,
+                         int ntri, const int *tri, DemWallType type) {
+  const Checkpoint *ck = b->ck;
+  int i = b->nmesh;
+  SA_REQUIRE(i < ck->nmesh, SA_ERR_INPUT,
+             "checkpoint '%s' has %d wall meshes: mesh '%s' would be one more", ck->path,
+             ck->nmesh, name);
+  const CkMesh *m = &ck->mesh[i];
+  SA_REQUIRE(!strcmp(m->name, name), SA_ERR_INPUT,
+             "wall mesh %d of checkpoint '%s' is '%s', not '%s' (add the meshes in the same order)",
+             i, ck->path, m->name, name);
+  SA_REQUIRE(m->type == (int)type && m->nverts == nverts && m->ntri == ntri, SA_ERR_INPUT,
+             "mesh '%s' of checkpoint '%s' has type %d, %d vertices, %d triangles; added: type %d, "
+             "%d vertices, %d triangles",
+             name, ck->path, m->type, m->nverts, m->ntri, (int)type, nverts, ntri);
+  SA_REQUIRE(!memcmp(m->tri, tri, 3 * (size_t)ntri * sizeof *tri), SA_ERR_INPUT,
+             "mesh '%s' of checkpoint '%s' has other triangles than the one added", name,
+             ck->path);
+  for (int v = 0; v < nverts; v++)
+    SA_REQUIRE(!memcmp(m->xyz + 3 * v, xyz + 3 * v, 3 * sizeof *xyz), SA_ERR_INPUT,
+               "mesh '%s': vertex %d is added at (%.17g, %.17g, %.17g), checkpoint '%s' has it at "
+               "(%.17g, %.17g, %.17g) (add a mesh where it was, move it afterwards)",
+               name, v, xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2], ck->path, m->xyz[3 * v],
+               m->xyz[3 * v + 1], m->xyz[3 * v + 2]);
+  return 0;
+}
+
+/* The state at a checkpoint, written or read, made the same: a set-up pass (run 0: neighbour
+ * lists built, grains sorted, contact histories laid out, forces recomputed from the full-step
+ * velocities; a resumed LIGGGHTS cannot do without it) with the walls where they were at the
+ * checkpoint, then the forces and torques of the checkpoint's last step put back, so that the
+ * next step integrates with what an uninterrupted run uses. run0 = 0: the caller has just done
+ * the set-up pass (dem_bridge_finalize_walls). */
+static int ck_setup_pass(DemBridge *b, int run0) {
+  const Checkpoint *ck = b->ck;
+  SA_REQUIRE(ck, SA_ERR_INTERNAL, "no checkpoint to restore forces from");
+  if (run0) SA_CHECK(send(b, "run 0 post no"));
+  b->ran = 1;
+  b->need_setup = 0;
+  int n = nlocal(b); /* at most ck->count: a grain may have left the box in the set-up pass */
+  if (n == 0) return 0;
+  int *tag = lammps_extract_atom(b->lmp, "id");
+  double **f = lammps_extract_atom(b->lmp, "f"), **t = lammps_extract_atom(b->lmp, "torque");
+  SA_REQUIRE(tag && f && t, SA_ERR_LIBRARY, "LIGGGHTS has no force or torque array");
+  for (int i = 0; i < n; i++) {
+    const CkGrain *g = ck_find(ck, tag[i]);
+    SA_REQUIRE(g, SA_ERR_INTERNAL, "grain %d is not in the checkpoint", tag[i]);
+    memcpy(f[i], g->f, sizeof g->f);
+    memcpy(t[i], g->torque, sizeof g->torque);
+  }
   return 0;
 }

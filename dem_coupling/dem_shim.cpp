@@ -23,6 +23,8 @@
 #include <update.h>
 #include <fix.h>
 #include <fix_mesh_surface.h>
+#include <fix_contact_history_mesh.h>
+#include <atom.h>
 #include <tri_mesh.h>
 
 using namespace LAMMPS_NS;
@@ -131,6 +133,29 @@ int dem_shim_mesh_forces(void *mesh, double *f) {
     o[2] = fe[i][2];
   }
   return 0;
+}
+
+int dem_shim_mesh_contacts(void *lmp, void *mesh, int max, int *tag, int *tri, double *hist) {
+  FixContactHistoryMesh *h = as_fix(mesh)->contactHistory();
+  if (!h) return -1;
+  Atom *atom = static_cast<LAMMPS *>(lmp)->atom;
+  const int nlocal = atom->nlocal, dnum = h->get_dnum();
+  int n = 0;
+  for (int i = 0; i < nlocal; i++) {
+    const int nn = h->nneighs(i);
+    for (int j = 0; j < nn; j++) {
+      const int t = h->get_partner_idTri(i, j);
+      if (t < 0) continue;
+      if (n < max) {
+        tag[n] = atom->tag[i];
+        tri[n] = t;
+        const double *c = h->contacthistory(i, j);
+        for (int k = 0; k < 3; k++) hist[3 * n + k] = k < dnum ? c[k] : 0.;
+      }
+      n++;
+    }
+  }
+  return n;
 }
 
 }  /* extern "C" */

@@ -37,6 +37,12 @@ int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double 
 /* Force of the last step on each triangle, f [out] at 3*id [N]; -1 if the mesh tracks no
  * stress. */
 int dem_shim_mesh_forces(void *mesh, double *f);
+/* The grain-wall contacts in the mesh's contact history (fix contacthistory/mesh): for each,
+ * the grain's atom tag, the triangle id and the first three history values (the tangential
+ * spring of `tangential history`), tag, tri [out] max, hist [out] 3 max. Returns how many
+ * there are (may exceed max: only max are written), -1 if the mesh has no contact history.
+ * Only after a run's set-up (before it, the history is not laid out per neighbour). */
+int dem_shim_mesh_contacts(void *lmp, void *mesh, int max, int *tag, int *tri, double *hist);
 
 #ifdef __cplusplus
 }
