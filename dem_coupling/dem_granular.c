@@ -17,6 +17,7 @@
  * Every step checks lost grains, NaN, the force balance and (every check_every steps) grains
  * outside the bore; the largest overlap and the implied packing are reported and bounded. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,7 +75,15 @@ typedef struct {
   double *sigma, *vm, *reg;
   int vtk_index;
   double t_dem, t_exchange, t_fem, t_out, t_checks;
+  /* the stroke's progress (kept in a checkpoint): next step (preload steps first), time,
+   * piston contact height, the CSV rows and VTK times written so far */
+  int next_step;
+  double time, z_contact;
+  double *rows, *vtk_t;
+  int nrows, cap_rows, cap_vtk;
 } Run;
+
+#define N_COLS 14
 
 /* ------------------------------------------------------------------ FEM side */
 
@@ -225,14 +234,16 @@ static void piston_vertices(int nth, double r, double z, double *xyz) {
 
 /* ------------------------------------------------------------------ DEM side */
 
-static int setup_dem(Run *g) {
+/* resume [in]: checkpoint path to continue from (NULL: a new bed is poured); xw_wall,
+ * z_piston: the wall nodes and piston height LIGGGHTS held at the checkpoint. */
+static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z_piston) {
   const DemScene *sc = g->sc;
   const DemGrainCase *gr = &sc->grains;
   g->d = gr->diameter;
   g->m_grain = gr->density * M_PI * pow(g->d, 3) / 6;
   /* pour at the softer of the two stiffnesses (the pour only prepares a random packing; its
    * duration is set by free fall, so a larger step makes it cheaper), press at the working one */
-  double E = gr->young / fmax(gr->softening, sc->dem.pour_softening);
+  double E = gr->young / fmax(gr->softening, resume ? 1 : sc->dem.pour_softening);
   double t_r = dem_scene_rayleigh_dt(g->d, gr->density, E, gr->poisson);
   g->dt = sc->dem.dt_fraction * t_r;
   DemParams p = {
@@ -244,7 +255,8 @@ static int setup_dem(Run *g) {
       .skin = sc->dem.skin * g->d, .seed = sc->dem.seed};
   /* the pour column: the bed volume at a loose 0.3 packing above the barrel top */
   double V_bore = M_PI * R_BORE * R_BORE * (80e-3 + gr->fill_height);
-  g->n_grains = (int)ceil(1.04 * gr->packing_guess * V_bore / (M_PI * pow(g->d, 3) / 6));
+  if (!resume)
+    g->n_grains = (int)ceil(1.04 * gr->packing_guess * V_bore / (M_PI * pow(g->d, 3) / 6));
   /* the pour column above the barrel: a grain column of height h takes sqrt(2 h / g) to fall,
    * so fewer, taller rounds pour faster (the time per grain falls as 1 / sqrt(h)); 160 mm
    * holds ~80 % of the 2 mm bed at the insertion packing below */
@@ -256,12 +268,17 @@ static int setup_dem(Run *g) {
   char log[SA_STR_MAX];
   SA_CHECK(sa_run_path(g->run, "liggghts.log", log));
   SA_CHECK(dem_bridge_create(log, &g->b));
-  SA_CHECK(dem_bridge_setup(g->b, &p));
-  sa_log(SA_LOG_INFO, "dem", "pouring %d grains of d = %.3g mm at E = %.3g MPa (physical / %g), "
-         "dt = %.3g us (%.2f x Rayleigh %.3g us)", g->n_grains, g->d * 1e3, E / 1e6,
-         gr->young / E, g->dt * 1e6, sc->dem.dt_fraction, t_r * 1e6);
-  /* wall (the FEM coupling surface at its reference position) */
-  SA_CHECK(dem_bridge_add_mesh(g->b, "wall", g->nv, g->xw_cur, g->nt,
+  if (resume) {
+    SA_CHECK(dem_bridge_setup_from_checkpoint(g->b, &p, resume, g->n_grains));
+    sa_log(SA_LOG_INFO, "dem", "resumed %d grains from %s", g->n_grains, resume);
+  } else {
+    SA_CHECK(dem_bridge_setup(g->b, &p));
+    sa_log(SA_LOG_INFO, "dem", "pouring %d grains of d = %.3g mm at E = %.3g MPa (physical / %g), "
+           "dt = %.3g us (%.2f x Rayleigh %.3g us)", g->n_grains, g->d * 1e3, E / 1e6,
+           gr->young / E, g->dt * 1e6, sc->dem.dt_fraction, t_r * 1e6);
+  }
+  /* wall (the FEM coupling surface at its hanging position, or where the checkpoint had it) */
+  SA_CHECK(dem_bridge_add_mesh(g->b, "wall", g->nv, resume ? xw_wall : g->xw_cur, g->nt,
                                fem_coupling_surface_triangles(g->cs), DEM_WALL_SILICONE,
                                &g->mesh_id[M_WALL]));
   g->mesh_nt[M_WALL] = g->nt, g->mesh_nv[M_WALL] = g->nv;
@@ -277,7 +294,7 @@ static int setup_dem(Run *g) {
   /* piston above the pour column */
   int nth = 36;
   g->piston_r = R_BORE - 0.15 * g->d;
-  g->z_piston = g->z_top + 2 * g->d;
+  g->z_piston = resume ? z_piston : g->z_top + 2 * g->d;
   g->mesh_nv[M_PISTON] = nth + 1, g->mesh_nt[M_PISTON] = nth;
   g->mesh_x[M_PISTON] = malloc(sizeof(double) * 3 * (nth + 1));
   g->piston_v = malloc(sizeof(double) * 3 * (nth + 1));
@@ -694,6 +711,13 @@ static int write_vtk(Run *g, double s_disp) {
   }
   SA_CHECK(sa_vtk_commit(&v));
   SA_CHECK(sa_vtk_series_add(g->vtk_grains, name, s_disp * 1e3));
+  if (g->vtk_index == g->cap_vtk) {
+    int cap = g->cap_vtk ? 2 * g->cap_vtk : 64;
+    double *t = realloc(g->vtk_t, sizeof(double) * (size_t)cap);
+    SA_REQUIRE(t, SA_ERR_MEMORY, "VTK times");
+    g->vtk_t = t, g->cap_vtk = cap;
+  }
+  g->vtk_t[g->vtk_index] = s_disp * 1e3;
   g->vtk_index++;
   g->t_out += sa_time_now() - t0;
   return 0;
@@ -723,11 +747,23 @@ static int open_outputs(Run *g) {
                                 "s", "-"};
   char path[SA_STR_MAX];
   SA_CHECK(sa_run_path(g->run, "bending.csv", path));
-  SA_CHECK(sa_csv_open(path, 14, names, units, &g->csv));
+  SA_CHECK(sa_csv_open(path, N_COLS, names, units, &g->csv));
   SA_CHECK(sa_run_path(g->run, "fem.vtk.series", path));
   SA_CHECK(sa_vtk_series_open(path, &g->vtk_fem));
   SA_CHECK(sa_run_path(g->run, "grains.vtk.series", path));
   SA_CHECK(sa_vtk_series_open(path, &g->vtk_grains));
+  return 0;
+}
+
+/* The rows written so far are kept for a checkpoint (a resumed run writes them again). */
+static int keep_row(Run *g, const double *row) {
+  if (g->nrows == g->cap_rows) {
+    int cap = g->cap_rows ? 2 * g->cap_rows : 256;
+    double *r = realloc(g->rows, sizeof(double) * N_COLS * (size_t)cap);
+    SA_REQUIRE(r, SA_ERR_MEMORY, "CSV rows");
+    g->rows = r, g->cap_rows = cap;
+  }
+  memcpy(g->rows + (size_t)N_COLS * g->nrows++, row, sizeof(double) * N_COLS);
   return 0;
 }
 
@@ -744,9 +780,10 @@ static int output_row(Run *g, double s_disp, double time) {
   double v = s_disp > 0 ? g->sc->piston.speed : 0;
   g->inertial = P > 0 ? v / H * g->d / sqrt(P / g->sc->grains.density) : 0;
   if (fabs(g->piston_force) >= 1.0) g->inertial_max = fmax(g->inertial_max, g->inertial);
-  double row[] = {s_disp, ang, g->piston_force, Vd, V / g->V0 - 1, V - g->V0, g->phi,
-                  g->wall_fz, g->barrel_fz, g->overlap, g->balance, g->newton, time,
-                  g->inertial};
+  double row[N_COLS] = {s_disp, ang, g->piston_force, Vd, V / g->V0 - 1, V - g->V0, g->phi,
+                        g->wall_fz, g->barrel_fz, g->overlap, g->balance, g->newton, time,
+                        g->inertial};
+  SA_CHECK(keep_row(g, row));
   return sa_csv_row(g->csv, row);
 }
 
@@ -824,51 +861,188 @@ static int write_summary(Run *g, double s_reached, const char *status, double wa
 
 /* ------------------------------------------------------------------ the run */
 
-static int stroke(Run *g, double z_contact, double *s_reached) {
+/* ------------------------------------------------------------------ checkpoint */
+
+/* <out>/checkpoint/dem.ckpt: the DEM bridge's (dem.h); state.ckpt: the FEM solver's state
+ * (fem.h) and the run's own, in that order, written at a step boundary. A resumed run continues
+ * the same floating-point path (the FEM refactorises after a checkpoint in both runs, the DEM
+ * bridge does its set-up pass in both): test coupled_resume. */
+typedef struct {
+  char magic[8];
+  int32_t nv, nrows, nvtk, next_step, n_grains, ncols;
+  int64_t dem_step;
+  double time, z_contact, z_piston, phi0, V_bed0, inertial_max;
+  double t_dem, t_exchange, t_fem, t_out, t_checks;
+} RunCheckpoint;
+#define RUN_CK_MAGIC "SARUNCK1"
+
+static int ck_paths(const Run *g, char *dir, char *dem, char *state) {
+  SA_CHECK(sa_run_path(g->run, "checkpoint", dir));
+  SA_CHECK(sa_path_join(dir, "dem.ckpt", dem));
+  return sa_path_join(dir, "state.ckpt", state);
+}
+
+static int write_checkpoint(Run *g) {
+  double t0 = sa_time_now();
+  char dir[SA_STR_MAX], dem[SA_STR_MAX], st[SA_STR_MAX];
+  SA_CHECK(ck_paths(g, dir, dem, st));
+  SA_CHECK(sa_mkdir_p(dir));
+  SA_CHECK(dem_bridge_write_checkpoint(g->b, dem));
+  DemCheckpointInfo info;
+  SA_CHECK(dem_bridge_checkpoint_info(dem, &info));
+  RunCheckpoint h = {.nv = g->nv, .nrows = g->nrows, .nvtk = g->vtk_index,
+                     .next_step = g->next_step, .n_grains = g->n_grains, .ncols = N_COLS,
+                     .dem_step = info.step, .time = g->time, .z_contact = g->z_contact,
+                     .z_piston = g->z_piston, .phi0 = g->phi0, .V_bed0 = g->V_bed0,
+                     .inertial_max = g->inertial_max, .t_dem = g->t_dem,
+                     .t_exchange = g->t_exchange, .t_fem = g->t_fem, .t_out = g->t_out,
+                     .t_checks = g->t_checks};
+  memcpy(h.magic, RUN_CK_MAGIC, 8);
+  SaFile *f = NULL;
+  SA_CHECK(sa_file_open(st, &f));
+  FILE *fp = sa_file_stream(f);
+  size_t v3 = 3 * (size_t)g->nv;
+  int rc = fwrite(&h, sizeof h, 1, fp) == 1 ? 0 : SA_ERROR(SA_ERR_IO, "writing %s", st);
+  if (!rc) rc = fem_solver_write_state(g->s, fp);
+  const double *arr[] = {g->xw, g->xw_prev, g->xw_cur, g->f_app, g->rows, g->vtk_t};
+  size_t len[] = {v3, v3, v3, v3, (size_t)N_COLS * g->nrows, (size_t)g->vtk_index};
+  for (int k = 0; k < 6 && !rc; k++)
+    if (len[k] && fwrite(arr[k], sizeof(double), len[k], fp) != len[k])
+      rc = SA_ERROR(SA_ERR_IO, "writing %s", st);
+  if (rc) {
+    sa_file_abort(&f);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  SA_CHECK(sa_file_commit(&f));
+  sa_log(SA_LOG_INFO, "dem", "checkpoint after coupling step %d (%.1f s simulated) in %s",
+         g->next_step, g->time, dir);
+  g->t_out += sa_time_now() - t0;
+  return 0;
+}
+
+/* The run's state and the FEM's from state.ckpt (the DEM bridge is resumed in setup_dem). */
+static int read_checkpoint(Run *g, char *dem_path, double **xw_wall) {
+  char dir[SA_STR_MAX], st[SA_STR_MAX];
+  SA_CHECK(ck_paths(g, dir, dem_path, st));
+  FILE *fp = fopen(st, "rb");
+  SA_REQUIRE(fp, SA_ERR_INPUT, "[coupling] resume: no checkpoint %s (run the case without resume "
+             "first, into the same --out folder)", st);
+  RunCheckpoint h;
+  int rc = fread(&h, sizeof h, 1, fp) == 1 && !memcmp(h.magic, RUN_CK_MAGIC, 8)
+               ? 0
+               : SA_ERROR(SA_ERR_INPUT, "%s is not a softact FEM-DEM checkpoint", st);
+  if (!rc && (h.nv != g->nv || h.ncols != N_COLS || h.nrows < 0 || h.nvtk < 0))
+    rc = SA_ERROR(SA_ERR_INPUT, "%s belongs to another model (%d wall vertices, this case has %d)",
+                  st, (int)h.nv, g->nv);
+  if (!rc) rc = fem_solver_read_state(g->s, fp, st);
+  size_t v3 = 3 * (size_t)g->nv;
+  double *xw = NULL;
+  if (!rc) {
+    xw = malloc(sizeof(double) * v3);
+    g->rows = malloc(sizeof(double) * N_COLS * (size_t)(h.nrows + 1));
+    g->vtk_t = malloc(sizeof(double) * (size_t)(h.nvtk + 1));
+    if (!xw || !g->rows || !g->vtk_t) rc = SA_ERROR(SA_ERR_MEMORY, "checkpoint buffers");
+    g->cap_rows = h.nrows + 1, g->cap_vtk = h.nvtk + 1;
+  }
+  double *arr[] = {xw, g->xw_prev, g->xw_cur, g->f_app, g->rows, g->vtk_t};
+  size_t len[] = {v3, v3, v3, v3, (size_t)N_COLS * h.nrows, (size_t)h.nvtk};
+  for (int k = 0; k < 6 && !rc; k++)
+    if (len[k] && fread(arr[k], sizeof(double), len[k], fp) != len[k])
+      rc = SA_ERROR(SA_ERR_INPUT, "checkpoint %s is truncated", st);
+  fclose(fp);
+  DemCheckpointInfo info;
+  if (!rc) rc = dem_bridge_checkpoint_info(dem_path, &info);
+  if (!rc && (info.step != h.dem_step || info.count != h.n_grains))
+    rc = SA_ERROR(SA_ERR_INPUT, "%s (step %lld, %d grains) does not belong to %s (step %lld, %d "
+                  "grains): the run was stopped while writing; nothing to resume from", dem_path,
+                  info.step, info.count, st, (long long)h.dem_step, (int)h.n_grains);
+  if (rc) {
+    free(xw);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  memcpy(g->xw, xw, sizeof(double) * v3);
+  g->nrows = h.nrows, g->vtk_index = h.nvtk, g->next_step = h.next_step;
+  g->n_grains = h.n_grains, g->time = h.time, g->z_contact = h.z_contact;
+  g->z_piston = h.z_piston, g->phi0 = h.phi0, g->V_bed0 = h.V_bed0;
+  g->inertial_max = h.inertial_max, g->t_dem = h.t_dem, g->t_exchange = h.t_exchange;
+  g->t_fem = h.t_fem, g->t_out = h.t_out, g->t_checks = h.t_checks;
+  *xw_wall = xw;
+  sa_log(SA_LOG_INFO, "dem", "resuming after coupling step %d (%.1f s simulated, %d rows)",
+         g->next_step, g->time, g->nrows);
+  return 0;
+}
+
+/* A resumed run writes the rows and VTK entries of the first part again. */
+static int replay_outputs(Run *g) {
+  for (int r = 0; r < g->nrows; r++) SA_CHECK(sa_csv_row(g->csv, g->rows + (size_t)N_COLS * r));
+  char name[64];
+  for (int i = 0; i < g->vtk_index; i++) {
+    snprintf(name, sizeof name, "fem_%04d.vtk", i);
+    SA_CHECK(sa_vtk_series_add(g->vtk_fem, name, g->vtk_t[i]));
+    snprintf(name, sizeof name, "grains_%04d.vtk", i);
+    SA_CHECK(sa_vtk_series_add(g->vtk_grains, name, g->vtk_t[i]));
+  }
+  return 0;
+}
+
+/* Coupling steps from g->next_step on: N_PRELOAD with the piston at rest (the settled bed's
+ * weight on the wall), then the stroke in steps of [coupling] interval. */
+static int stroke(Run *g, double *s_reached) {
   const DemScene *sc = g->sc;
   const DemCouplingCase *cc = &sc->coupling;
   double v = sc->piston.speed, T = cc->interval / v;
-  int nint = (int)ceil(sc->piston.stroke / cc->interval - 1e-9);
+  int nint = (int)ceil(sc->piston.stroke / cc->interval - 1e-9), ntot = N_PRELOAD + nint;
   SaProgress *prog = NULL;
-  if (sa_progress_start("piston stroke", nint + N_PRELOAD, &prog)) sa_error_clear();
-  double time = 0;
-  *s_reached = 0;
+  if (sa_progress_start("piston stroke", ntot, &prog)) sa_error_clear();
+  if (prog) sa_progress_update(prog, g->next_step);
+  *s_reached = g->next_step > N_PRELOAD
+                   ? fmin((g->next_step - N_PRELOAD) * cc->interval, sc->piston.stroke)
+                   : 0;
   int rc = 0;
-  /* preload: the settled bed's weight on the wall, piston at rest */
-  for (int k = 0; k < N_PRELOAD && !rc; k++) {
-    rc = dem_step(g, z_contact, 0, T);
-    if (!rc) rc = fem_step(g, T);
-    if (!rc) rc = step_checks(g, 0, 0, k == N_PRELOAD - 1);
-    time += T;
-    if (prog) sa_progress_update(prog, k + 1);
-  }
-  if (!rc) rc = output_row(g, 0, time);
-  if (!rc) rc = write_vtk(g, 0);
-  for (int k = 1; k <= nint && !rc; k++) {
+  for (int j = g->next_step; j < ntot && !rc; j++) {
     if (sa_interrupted()) {
-      rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted at piston displacement %.3f mm",
-                    *s_reached * 1e3);
+      rc = write_checkpoint(g);
+      if (!rc)
+        rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted at piston displacement %.3f mm (resume "
+                      "with --set coupling.resume=true)", *s_reached * 1e3);
       break;
     }
-    double s0 = (k - 1) * cc->interval, s1 = fmin(k * cc->interval, sc->piston.stroke);
-    double Tk = (s1 - s0) / v;
-    rc = dem_step(g, z_contact - s0, v, Tk);
-    if (!rc) rc = fem_step(g, Tk);
-    if (!rc) rc = step_checks(g, k, s1, k % sc->dem.check_every == 0 || k == nint);
-    if (rc) break;
-    time += Tk;
-    *s_reached = s1;
-    rc = output_row(g, s1, time);
-    int every = cc->vtk_every;
-    if (!rc && ((every > 0 && k % every == 0) || k == nint)) rc = write_vtk(g, s1);
-    if (prog) sa_progress_update(prog, N_PRELOAD + k);
-    sa_log(SA_LOG_DEBUG, "dem", "s = %.3f mm: angle %.3f deg, piston %.4g N, overlap %.3g, "
-           "balance %.3g, phi %.4f, %d Newton", s1 * 1e3, g->angle, g->piston_force, g->overlap,
-           g->balance, g->phi, g->newton);
-    if (k % 10 == 0 || k == nint)
-      sa_log(SA_LOG_INFO, "dem", "piston %6.2f mm: bending angle %7.3f deg, piston force %8.3f N,"
-             " cavity volume %+.2f %%", s1 * 1e3, g->angle, g->piston_force,
-             100 * (fem_solver_cavity_volume(g->s) / g->V0 - 1));
+    if (j < N_PRELOAD) {
+      rc = dem_step(g, g->z_contact, 0, T);
+      if (!rc) rc = fem_step(g, T);
+      if (!rc) rc = step_checks(g, 0, 0, j == N_PRELOAD - 1);
+      if (rc) break;
+      g->time += T;
+      if (j == N_PRELOAD - 1) {
+        rc = output_row(g, 0, g->time);
+        if (!rc) rc = write_vtk(g, 0);
+      }
+    } else {
+      int k = j - N_PRELOAD + 1;
+      double s0 = (k - 1) * cc->interval, s1 = fmin(k * cc->interval, sc->piston.stroke);
+      double Tk = (s1 - s0) / v;
+      rc = dem_step(g, g->z_contact - s0, v, Tk);
+      if (!rc) rc = fem_step(g, Tk);
+      if (!rc) rc = step_checks(g, k, s1, k % sc->dem.check_every == 0 || k == nint);
+      if (rc) break;
+      g->time += Tk;
+      *s_reached = s1;
+      rc = output_row(g, s1, g->time);
+      int every = cc->vtk_every;
+      if (!rc && ((every > 0 && k % every == 0) || k == nint)) rc = write_vtk(g, s1);
+      sa_log(SA_LOG_DEBUG, "dem", "s = %.3f mm: angle %.3f deg, piston %.4g N, overlap %.3g, "
+             "balance %.3g, phi %.4f, %d Newton", s1 * 1e3, g->angle, g->piston_force,
+             g->overlap, g->balance, g->phi, g->newton);
+      if (k % 10 == 0 || k == nint)
+        sa_log(SA_LOG_INFO, "dem", "piston %6.2f mm: bending angle %7.3f deg, piston force "
+               "%8.3f N, cavity volume %+.2f %%", s1 * 1e3, g->angle, g->piston_force,
+               100 * (fem_solver_cavity_volume(g->s) / g->V0 - 1));
+    }
+    g->next_step = j + 1;
+    if (!rc && cc->checkpoint_every > 0 && g->next_step % cc->checkpoint_every == 0 &&
+        g->next_step < ntot)
+      rc = write_checkpoint(g);
+    if (prog) sa_progress_update(prog, j + 1);
   }
   sa_progress_finish(&prog);
   return rc;
@@ -892,6 +1066,8 @@ static void run_free(Run *g) {
   free(g->piston_v);
   free(g->cell_types);
   free(g->cell_off);
+  free(g->rows);
+  free(g->vtk_t);
 }
 
 int dem_granular_run(const DemScene *sc, const SaRun *run) {
@@ -900,15 +1076,25 @@ int dem_granular_run(const DemScene *sc, const SaRun *run) {
   g.sc = sc, g.run = run;
   g.dynamic = !strcmp(sc->coupling.scheme, "dynamic");
   g.rigid = !strcmp(sc->coupling.scheme, "rigid");
-  double t_start = sa_time_now(), z_contact = 0, s_reached = 0;
+  double t_start = sa_time_now(), s_reached = 0;
   int rc = setup_fem(&g);
-  if (!rc) rc = setup_dem(&g);
-  if (!rc) rc = open_outputs(&g);
-  if (!rc) rc = pour(&g);
+  if (sc->coupling.resume) {
+    char dem[SA_STR_MAX];
+    double *xw_wall = NULL;
+    if (!rc) rc = read_checkpoint(&g, dem, &xw_wall);
+    if (!rc) rc = setup_dem(&g, dem, xw_wall, g.z_piston);
+    free(xw_wall);
+    if (!rc) rc = open_outputs(&g);
+    if (!rc) rc = replay_outputs(&g);
+  } else {
+    if (!rc) rc = setup_dem(&g, NULL, NULL, 0);
+    if (!rc) rc = open_outputs(&g);
+    if (!rc) rc = pour(&g);
+  }
   if (!rc) rc = alloc_particles(&g, g.n_grains);
-  if (!rc) rc = lower_piston(&g, &z_contact);
+  if (!rc && !sc->coupling.resume) rc = lower_piston(&g, &g.z_contact);
   int started = !rc;
-  if (!rc) rc = stroke(&g, z_contact, &s_reached);
+  if (!rc) rc = stroke(&g, &s_reached);
   if (started && g.inertial_max > 1e-3)
     sa_log(SA_LOG_WARN, "dem", "the bed's inertial number reached %.2g (> 1e-3): the flow is not "
            "quasi-static; slow the piston ([piston] speed) for a quasi-static result",

@@ -80,6 +80,12 @@ static const SaParam coupling_params[] = {
      "wall in jumps, which pushes the grains along the motion: docs/dem.md)"},
     {"gravity", SA_PARAM_BOOL, P(gravity), "-", "1", 0, 0, 0, NULL,
      "gravity (-z, 9.81 m/s^2) on grains and silicone"},
+    {"checkpoint_every", SA_PARAM_INT, P(checkpoint_every), "-", "20", 0, 100000, 0, NULL,
+     "coupling steps between checkpoints in <out>/checkpoint (0 = only when interrupted); a "
+     "run stopped by SIGINT/SIGTERM always writes one"},
+    {"resume", SA_PARAM_BOOL, P(resume), "-", "0", 0, 0, 0, NULL,
+     "continue from <out>/checkpoint of an earlier run of the same case into the same --out "
+     "folder, instead of pouring (same result as a run that was never stopped)"},
     {"vtk_every", SA_PARAM_INT, P(vtk_every), "-", "25", 0, 100000, 0, NULL,
      "write VTK (silicone + grains) every this many coupling steps (0 = first and last only)"},
     {"wall_surface", SA_PARAM_STRING, P(wall_surface), "-", "cavity_wall", 0, 0, 0, NULL,

@@ -24,7 +24,7 @@ typedef struct {
 
 typedef struct {
   double interval, relaxation, damping, interface_stiffness;
-  int sample_every, gravity, vtk_every;
+  int sample_every, gravity, vtk_every, checkpoint_every, resume;
   char scheme[SA_STR_MAX];
   char wall_surface[SA_STR_MAX], fixed_surface[SA_STR_MAX], tip_surface[SA_STR_MAX];
 } DemCouplingCase;
