@@ -492,7 +492,8 @@ static int dem_step(Run *g, double z0, double v, double T) {
     double t0 = sa_time_now();
     /* positions at the end of the chunk; velocities constant over the step */
     for (int k = 0; k < 3 * g->nv; k++) g->xw[k] = g->xw_prev[k] + a * (g->xw_cur[k] - g->xw_prev[k]);
-    SA_CHECK(dem_bridge_set_mesh_nodes(g->b, g->mesh_id[M_WALL], g->xw, g->vw));
+    if (!g->rigid) /* LIGGGHTS alone: the wall stays where it is */
+      SA_CHECK(dem_bridge_set_mesh_nodes(g->b, g->mesh_id[M_WALL], g->xw, g->vw));
     if (sa_log_get_level() >= SA_LOG_DEBUG && done == 0) {
       double *chk = malloc(sizeof(double) * 3 * (size_t)g->nv), e = 0;
       if (chk && !dem_bridge_mesh_nodes(g->b, g->mesh_id[M_WALL], chk))
