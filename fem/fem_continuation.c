@@ -111,6 +111,8 @@ static void commit_substep(FemSolver *s, double dt) {
   s->as.hist_t = h;
   s->time += dt;
   s->ct.fail_not_pd = 0;
+  for (int c = 0; c < s->as.ncontrib; c++)
+    if (s->as.contrib[c].commit) s->as.contrib[c].commit(s->as.contrib[c].ctx, s->x);
 }
 
 /* Loads reached at ramp parameter lam become the committed loads. */
