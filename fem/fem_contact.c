@@ -25,6 +25,7 @@
 #include "sa_log.h"
 
 enum { TGT_NONE = 0, TGT_PLANE, TGT_CYLINDER, TGT_MESH };
+enum { LOCK_ITER = 3 };
 
 struct FemContact {
   const FemMesh *m;
@@ -40,6 +41,11 @@ struct FemContact {
   /* committed history */
   double *anc;    /* rigid: anchor point (3 per slave) */
   int *anc_f;     /* mesh: anchor triangle (-1: none) */
+  /* stick/slip chatter guard within a substep: a node whose state flips between two tangent
+   * evaluations from the LOCK_ITER-th on is held in slip until the step is accepted (slip is
+   * admissible, |t_T| = mu t_N; a node held in stick could violate Coulomb) */
+  int *slip_prev, *slip_lock, n_tan;
+  int *last_tri; /* mesh: triangle found at the last evaluation (tie-breaking) */
   double *anc_b;  /* mesh: its barycentric coordinates (3 per slave) */
   /* committed read-back */
   double *gap_c, *tn_c, *tt_c, *nrm_c;
@@ -123,6 +129,10 @@ int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactP
   SA_CALLOC(c->anc, 3 * c->ns);
   SA_CALLOC(c->anc_f, c->ns);
   SA_CALLOC(c->anc_b, 3 * c->ns);
+  SA_CALLOC(c->slip_prev, c->ns);
+  SA_CALLOC(c->last_tri, c->ns);
+  for (int k = 0; k < c->ns; k++) c->last_tri[k] = -1;
+  SA_CALLOC(c->slip_lock, c->ns);
   SA_CALLOC(c->gap_c, c->ns);
   SA_CALLOC(c->tn_c, c->ns);
   SA_CALLOC(c->tt_c, 3 * c->ns);
@@ -196,7 +206,7 @@ int fem_contact_set_cylinder(FemContact *c, const double p[3], const double a[3]
 static int node_law(const FemContactParams *p, double A, double g, const double n[3],
                     const double *N, const double x[3], const double a[3], int frozen, int slip_in,
                     double F[3], double *dF, double *tn_out, double tt[3], int *slip) {
-  if (g >= 0 && !frozen) {
+  if (g > 0 && !frozen) { /* g = 0 is active: touching bodies get the contact stiffness */
     memset(F, 0, 3 * sizeof *F);
     if (dF) memset(dF, 0, 9 * sizeof *dF);
     if (tt) memset(tt, 0, 3 * sizeof *tt);
@@ -212,7 +222,10 @@ static int node_law(const FemContactParams *p, double A, double g, const double 
   double dn = sqrt(dot3(d, d));
   /* mu = 0: no tangential force at all (the stick set is the single point d = 0, where a
    * stick stiffness would not be the derivative of the zero force around it) */
-  int sl = mu == 0 ? 1 : slip_in >= 0 ? slip_in : (eT * dn > mu * tn);
+  /* a slip vector at round-off level (e.g. the reference state, t_N = 0) has no direction:
+   * stick */
+  double dtiny = 1e-13 * (fabs(x[0]) + fabs(x[1]) + fabs(x[2]) + fabs(a[0]) + fabs(a[1]) + fabs(a[2]));
+  int sl = mu == 0 ? 1 : slip_in >= 0 ? slip_in : (eT * dn > mu * tn && dn > dtiny);
   if (sl && dn == 0 && mu > 0) sl = 0; /* frozen slip with no slip vector: nothing to orient */
   for (int i = 0; i < 3; i++) t[i] = sl ? (mu > 0 ? -mu * tn * d[i] / dn : 0) : -eT * d[i];
   for (int i = 0; i < 3; i++) F[i] = A * (tn * n[i] + t[i]);
@@ -340,8 +353,11 @@ static void tri_normal(const double *A, const double *B, const double *C, double
   for (int i = 0; i < 3; i++) n[i] /= l;
 }
 
-/* Closest master triangle to the node at xs (not containing node): index or -1. */
-static int mesh_search(const FemContact *c, int node, const double *x, const double *xs) {
+/* Closest master triangle to the node at xs (not containing node): index or -1. Ties (a node
+ * over a master edge or vertex is equally close to every triangle sharing it) keep the
+ * triangle prev of the last evaluation: switching between them from one Newton iterate to the
+ * next changes the force distribution by round-off-driven jumps (a residual floor). */
+static int mesh_search(const FemContact *c, int node, const double *x, const double *xs, int prev) {
   double best = INFINITY;
   int bt = -1;
   for (int t = 0; t < c->nt; t++) {
@@ -365,6 +381,13 @@ static int mesh_search(const FemContact *c, int node, const double *x, const dou
       best = d2;
       bt = t;
     }
+  }
+  if (prev >= 0 && prev != bt && bt >= 0) {
+    const int *v = c->tri + 3 * prev;
+    double bc[3], d2 = closest_on_tri(xs, x + 3 * v[0], x + 3 * v[1], x + 3 * v[2], bc);
+    const double *A = x + 3 * c->tri[3 * bt], *B = x + 3 * c->tri[3 * bt + 1];
+    double h2 = (A[0] - B[0]) * (A[0] - B[0]) + (A[1] - B[1]) * (A[1] - B[1]) + (A[2] - B[2]) * (A[2] - B[2]);
+    if (d2 <= best + 1e-20 * h2) bt = prev;
   }
   return bt;
 }
@@ -430,10 +453,16 @@ static int pair_eval(const FemContact *c, int k, const double *xl, const int *rt
 
 /* ------------------------------------------------------------------ contributor */
 
+static void note_slip(FemContact *c, int k, int slip) {
+  if (c->n_tan >= LOCK_ITER && slip != c->slip_prev[k]) c->slip_lock[k] = 1;
+  c->slip_prev[k] = slip;
+}
+
 static int contact_eval(void *ctx, FemAsmView *v) {
   FemContact *c = ctx;
   const double *x = fem_asm_positions(v);
   int wantK = fem_asm_wants_tangent(v);
+  if (wantK) c->n_tan++;
   for (int k = 0; k < c->ns; k++) {
     int A = c->snode[k];
     const double *xs = x + 3 * A;
@@ -442,9 +471,10 @@ static int contact_eval(void *ctx, FemAsmView *v) {
     int slip;
     if (c->target == TGT_PLANE || c->target == TGT_CYLINDER) {
       if (!rigid_geom(c, xs, &g, n, N)) continue;
-      if (!node_law(&c->prm, c->sarea[k], g, n, N, xs, c->anc + 3 * k, 0, -1, F,
-                    wantK ? dF : NULL, &tn, NULL, &slip))
+      if (!node_law(&c->prm, c->sarea[k], g, n, N, xs, c->anc + 3 * k, 0,
+                    c->slip_lock[k] ? 1 : -1, F, wantK ? dF : NULL, &tn, NULL, &slip))
         continue;
+      if (wantK) note_slip(c, k, slip);
       if (c->prm.max_penetration > 0 && -g > c->prm.max_penetration) {
         sa_log(SA_LOG_DEBUG, "fem", "contact '%s': node %d penetrates %.3g m > %.3g m", c->slave,
                A, -g, c->prm.max_penetration);
@@ -458,12 +488,15 @@ static int contact_eval(void *ctx, FemAsmView *v) {
       }
       continue;
     }
-    int t = mesh_search(c, A, x, xs);
+    int t = mesh_search(c, A, x, xs, c->last_tri[k]);
+    c->last_tri[k] = t;
     if (t < 0) continue;
     int L[7], rt[3], ra[3], nl = pair_nodes(c, k, t, L, rt, ra);
     double xl[21], Fs[3], Fm[9], tt[3];
     for (int r = 0; r < nl; r++) memcpy(xl + 3 * r, x + 3 * L[r], 3 * sizeof(double));
-    if (!pair_eval(c, k, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt, &slip)) continue;
+    if (!pair_eval(c, k, xl, rt, ra, 0, c->slip_lock[k] ? 1 : -1, Fs, Fm, &g, n, &tn, tt, &slip))
+      continue;
+    if (wantK) note_slip(c, k, slip);
     if (c->prm.max_penetration > 0 && -g > c->prm.max_penetration) {
       sa_log(SA_LOG_DEBUG, "fem", "contact '%s': node %d penetrates %.3g m > %.3g m", c->slave,
              A, -g, c->prm.max_penetration);
@@ -522,19 +555,20 @@ static void contact_commit(void *ctx, const double *x) {
     int slip = 0, act = 0;
     if (c->target == TGT_PLANE || c->target == TGT_CYLINDER) {
       if (rigid_geom(c, xs, &g, n, N)) {
-        act = node_law(&c->prm, c->sarea[k], g, n, N, xs, c->anc + 3 * k, 0, -1, F, NULL, &tn,
-                       tt, &slip);
+        act = node_law(&c->prm, c->sarea[k], g, n, N, xs, c->anc + 3 * k, 0,
+                       c->slip_lock[k] ? 1 : -1, F, NULL, &tn, tt, &slip);
         for (int i = 0; i < 3; i++) c->anc[3 * k + i] = xs[i] - g * n[i] + tt[i] / c->prm.penalty_tangent;
       } else {
         memcpy(c->anc + 3 * k, xs, 3 * sizeof(double));
       }
     } else if (c->target == TGT_MESH) {
-      int t = mesh_search(c, A, x, xs);
+      int t = mesh_search(c, A, x, xs, c->last_tri[k]);
       if (t >= 0) {
         int L[7], rt[3], ra[3], nl = pair_nodes(c, k, t, L, rt, ra);
         double xl[21], Fs[3], Fm[9];
         for (int r = 0; r < nl; r++) memcpy(xl + 3 * r, x + 3 * L[r], 3 * sizeof(double));
-        act = pair_eval(c, k, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt, &slip);
+        act = pair_eval(c, k, xl, rt, ra, 0, c->slip_lock[k] ? 1 : -1, Fs, Fm, &g, n, &tn, tt,
+                        &slip);
         memcpy(F, Fs, sizeof F);
         /* new anchor a = x_c - d_new = xs - g n + t_T / eps_T, in the triangle's (unclamped)
          * barycentric coordinates */
@@ -575,6 +609,12 @@ static void contact_commit(void *ctx, const double *x) {
     st.normal_force += c->sarea[k] * tn;
   }
   st.tangent_force = sqrt(dot3(tsum, tsum));
+  st.n_locked = 0;
+  for (int k = 0; k < c->ns; k++) {
+    st.n_locked += c->slip_lock[k];
+    c->slip_lock[k] = c->slip_prev[k] = 0;
+  }
+  c->n_tan = 0;
   c->st = st;
 }
 
@@ -637,7 +677,7 @@ int fem_contact_slaves(const FemContact *c, const int **node, const double **are
 void fem_contact_destroy(FemContact **cp) {
   if (!cp || !*cp) return;
   FemContact *c = *cp;
-  void *p[] = {c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
+  void *p[] = {c->last_tri, c->slip_prev, c->slip_lock, c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
                c->gap_c, c->tn_c, c->tt_c, c->nrm_c};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
   free(c);
