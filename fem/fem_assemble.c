@@ -175,7 +175,7 @@ int fem_solver_add_spring(FemSolver *s, int a, int b, double k) {
   SA_REQUIRE(k > 0 && isfinite(k), SA_ERR_INPUT, "spring stiffness %g must be > 0", k);
   FemAssembly *as = &s->as;
   if (as->nsprings == 0) {
-    FemContributor c = {"springs", springs_candidates, springs_eval, s};
+    FemContributor c = {"springs", springs_candidates, springs_eval, s, NULL};
     SA_CHECK(fem_solver_add_contributor(s, &c));
   }
   if (as->nsprings == as->cap_springs) {

@@ -79,6 +79,8 @@ typedef struct { /* fem_newton.c */
   double *u_it;                             /* last accepted Newton iterate (ndof) */
   double p_it;
   int last_sym;   /* symmetric path used at the last factorisation */
+  int laws_unsym; /* a region's law declares an unsymmetric tangent (fem_material_symmetric):
+                   * UMFPACK LU directly, no CHOLMOD attempt and no asymmetry measurement */
   int saw_not_pd; /* a factorisation in the current substep was not positive definite (the
                    * fallback is logged once per substep; CHOLMOD is still tried every time) */
   int lu_substep; /* LU factorisations in the current substep */
