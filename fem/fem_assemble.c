@@ -33,6 +33,7 @@ struct FemPairSink {
 const FemMesh *fem_asm_mesh(const FemAsmView *v) { return v->s->m; }
 const double *fem_asm_positions(const FemAsmView *v) { return v->x; }
 double fem_asm_time(const FemAsmView *v) { return v->s->time; }
+double fem_asm_load_factor(const FemAsmView *v) { return v->s->ct.lam_eval; }
 int fem_asm_wants_tangent(const FemAsmView *v) { return v->want_K; }
 
 void fem_asm_add_force(FemAsmView *v, int a, const double f[3]) {

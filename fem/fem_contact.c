@@ -32,7 +32,9 @@ struct FemContact {
   FemContactParams prm;
   char slave[64], master[64];
   int target;
-  double pp[3], pn[3];                   /* plane */
+  double pp[3], pn[3];                   /* plane (at the state being evaluated) */
+  double pp_c[3], pp_t[3];               /* plane point committed / target (moves with the
+                                          * solver's ramp parameter) */
   double cp[3], ca[3], R, smin, smax;    /* cylinder */
   int nt, *tri;                          /* master flat triangles (3 nodes each) */
   int ns, *snode;                        /* slave nodes */
@@ -173,11 +175,25 @@ int fem_contact_set_plane(FemContact *c, const double p[3], const double n[3]) {
   SA_REQUIRE(l > 0 && isfinite(l) && isfinite(dot3(p, p)), SA_ERR_INPUT,
              "contact plane: normal must be non-zero and finite");
   for (int i = 0; i < 3; i++) {
-    c->pp[i] = p[i];
+    c->pp[i] = c->pp_c[i] = c->pp_t[i] = p[i];
     c->pn[i] = n[i] / l;
   }
   c->target = TGT_PLANE;
   return 0;
+}
+
+int fem_contact_move_plane(FemContact *c, const double p[3]) {
+  SA_REQUIRE(c->target == TGT_PLANE, SA_ERR_INPUT, "contact '%s': move_plane needs a plane target",
+             c->slave);
+  SA_REQUIRE(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]), SA_ERR_INPUT,
+             "contact '%s': plane target not finite", c->slave);
+  memcpy(c->pp_t, p, sizeof c->pp_t);
+  return 0;
+}
+
+/* Plane point at ramp parameter lam. */
+static void plane_at(FemContact *c, double lam) {
+  for (int i = 0; i < 3; i++) c->pp[i] = c->pp_c[i] + lam * (c->pp_t[i] - c->pp_c[i]);
 }
 
 int fem_contact_set_cylinder(FemContact *c, const double p[3], const double a[3], double R,
@@ -462,6 +478,7 @@ static int contact_eval(void *ctx, FemAsmView *v) {
   FemContact *c = ctx;
   const double *x = fem_asm_positions(v);
   int wantK = fem_asm_wants_tangent(v);
+  if (c->target == TGT_PLANE) plane_at(c, fem_asm_load_factor(v));
   if (wantK) c->n_tan++;
   for (int k = 0; k < c->ns; k++) {
     int A = c->snode[k];
@@ -546,6 +563,12 @@ static int contact_eval(void *ctx, FemAsmView *v) {
  * map is kept, the slipped part is absorbed by moving the anchor) and the read-back state. */
 static void contact_commit(void *ctx, const double *x) {
   FemContact *c = ctx;
+  if (c->target == TGT_PLANE) {
+    double lam = c->s ? fem_solver_load_factor(c->s) : 0.0;
+    plane_at(c, lam);
+    /* a completed ramp makes the target the committed position */
+    if (lam >= 1.0 - 1e-12) memcpy(c->pp_c, c->pp_t, sizeof c->pp_c);
+  }
   FemContactStats st = {0};
   double tsum[3] = {0, 0, 0};
   for (int k = 0; k < c->ns; k++) {

@@ -67,6 +67,10 @@ int fem_contact_set_master(FemContact *c, const char *master);
 /* Target: rigid plane through point p [in] 3 with unit normal n [in] 3 pointing to the slave's
  * side. May be called again between solves to move the plane (anchors keep their points). */
 int fem_contact_set_plane(FemContact *c, const double p[3], const double n[3]);
+/* Move the plane to pass through p [in] 3 during the next solve: its point follows the solver's
+ * ramp parameter from the committed position (fem_solver_load_factor), so substeps and
+ * cut-backs move it with the loads (a prescribed piston). set_plane places it at once. */
+int fem_contact_move_plane(FemContact *c, const double p[3]);
 /* Target: rigid cylinder wall, axis through p [in] along a [in] (normalised here), radius R,
  * active for axial coordinate s = (x - p).a in [smin, smax]; the slave lives inside. */
 int fem_contact_set_cylinder(FemContact *c, const double p[3], const double a[3], double R,

@@ -57,6 +57,7 @@ void fem_pairs_add(FemPairSink *sink, int a, int b);
 const FemMesh *fem_asm_mesh(const FemAsmView *v);
 const double *fem_asm_positions(const FemAsmView *v); /* current x [borrowed] 3 * nnodes */
 double fem_asm_time(const FemAsmView *v);             /* [s] of the state being assembled */
+double fem_asm_load_factor(const FemAsmView *v);      /* ramp parameter, fem_solver_load_factor */
 int fem_asm_wants_tangent(const FemAsmView *v);
 /* f [in] 3: force on node a (internal-force sign, see above). */
 void fem_asm_add_force(FemAsmView *v, int a, const double f[3]);

@@ -102,6 +102,8 @@ typedef struct { /* fem_continuation.c */
   double *fn_c, *fn_t, *up_c, *up_t;
   double V_goal, V_last, V_prev, p_last, p_prev;
   double lam_total;  /* ramp parameters completed since creation */
+  double lam_eval;   /* ramp parameter of the loads last applied (the state being assembled;
+                      * 1 after a completed solve): contributors' moving targets follow it */
   int step_count;    /* substeps attempted since creation (log numbering) */
   double dl_keep;    /* increment carried over to the next ramp */
   double slope0;     /* first measured dp/dV (stiffness reference) */

@@ -89,7 +89,7 @@ static int janssen(int mc) {
   }
   double h = H / 24;
   FemContactParams cp = fem_contact_params_default();
-  cp.penalty = 10 * E / h;
+  cp.penalty = (getenv("JANSSEN_ALPHA") ? atof(getenv("JANSSEN_ALPHA")) : 10.0) * E / h;
   cp.friction = MUW;
   const char *sides[4] = {"s0", "s1", "s2", "s3"};
   FemContact *wall[4];
@@ -101,7 +101,17 @@ static int janssen(int mc) {
   }
   /* floor: rollers (frictionless), lowered as a prescribed displacement so the solver ramps it
    * with cut-backs (a rigid target moved between solves jumps in one Newton solve) */
-  TU_CHECK(fem_solver_fix_surface(s, "bottom", FEM_Z));
+  int plane_floor = getenv("JANSSEN_PLANE_FLOOR") != NULL;
+  FemContact *floor_c = NULL;
+  if (plane_floor) {
+    FemContactParams fp = cp;
+    fp.friction = 0;
+    TU_CHECK(fem_contact_create(m, "bottom", &fp, &floor_c));
+    TU_CHECK(fem_contact_set_plane(floor_c, (double[3]){0, 0, 0}, (double[3]){0, 0, 1}));
+    TU_CHECK(fem_contact_attach(floor_c, s));
+  } else {
+    TU_CHECK(fem_solver_fix_surface(s, "bottom", FEM_Z));
+  }
   TU_CHECK(fem_solver_setup(s));
   double t0 = sa_time_now();
   /* the fill settles under gravity in a frictionless tube (a laterally confined column), then
@@ -119,8 +129,17 @@ static int janssen(int mc) {
     fprintf(stderr, "probe: %d iterations\n", rp.newton_iters);
   }
   const FemSurface *bot = fem_mesh_find_surface(m, "bottom");
-  TU_CHECK(fem_solver_set_prescribed(s, bot->nnodes, bot->nodes, 2, -5e-6));
-  TU_CHECK(fem_solver_solve(s));
+  if (plane_floor) {
+    int nl = getenv("JANSSEN_NLOWER") ? atoi(getenv("JANSSEN_NLOWER")) : 1;
+    for (int k = 1; k <= nl; k++) {
+      TU_CHECK(fem_contact_move_plane(floor_c, (double[3]){0, 0, -5e-6 * k / nl}));
+      TU_CHECK(fem_solver_solve(s));
+      if (getenv("CONTACT_VERBOSE")) fprintf(stderr, "floor lowered %d/%d\n", k, nl);
+    }
+  } else {
+    TU_CHECK(fem_solver_set_prescribed(s, bot->nnodes, bot->nodes, 2, -5e-6));
+    TU_CHECK(fem_solver_solve(s));
+  }
   double t_solve = sa_time_now() - t0;
   /* wall: pressure profile, friction, slip */
   double area_b[NBIN] = {0}, pn_b[NBIN] = {0}, Nw = 0, Fw_z = 0;
@@ -150,6 +169,11 @@ static int janssen(int mc) {
   for (int k = 0; k < bot->nnodes; k++) Ffloor += r[3 * bot->nodes[k] + 2];
   free(r);
   Ffloor = fabs(Ffloor);
+  if (plane_floor) {
+    FemContactStats fst;
+    fem_contact_stats(floor_c, &fst);
+    Ffloor = fst.force[2];
+  }
   double W = RHO * G * fem_mesh_volume(m, -1);
   /* slice-averaged vertical stress (compression positive) */
   double *sig = malloc(sizeof(double) * 9 * m->nelem);
@@ -242,6 +266,7 @@ static int janssen(int mc) {
   (void)eqp;
   fem_solver_destroy(&s);
   for (int k = 0; k < 4; k++) fem_contact_destroy(&wall[k]);
+  fem_contact_destroy(&floor_c);
   smesh_free(&m);
   return fail;
 }
