@@ -25,9 +25,13 @@
  *    wall friction / wall normal force = mu_w to 1e-3 (the slip direction is vertical up to
  *    the small lateral motion);
  *  - lateral stress ratio K = p_w / sigma_v (wall pressure over the slice-averaged vertical
- *    stress), mean over the slices away from the top and the floor: the laterally confined
- *    elastic value nu / (1 - nu) within 10 % (the wall's penalty compliance and friction
- *    shear make the state differ from uniaxial strain);
+ *    stress), mean over the slices away from the top and the floor, against the laterally
+ *    confined elastic value with the wall's penalty compliance (radial strain e = p_w /
+ *    (eps_N R), linear elasticity, per unit axial strain eps_z = -1):
+ *      p_w = lambda / (1 + (2 lambda + 2 G) / (eps_N R)),  sigma_v = lambda + 2 G - 2 lambda e,
+ *      K = p_w / sigma_v  (-> nu / (1 - nu) = 0.429 for a rigid wall; 0.413 at alpha = 10),
+ *    within 5 % (the wall shear and the non-uniform section make the state differ from uniaxial
+ *    strain; measured -3.1 % at alpha = 1 .. 100, docs/contact.md);
  *  - Janssen: the slice-averaged sigma_v against the law with the measured K and mu_w, max
  *    deviation 5 % of rho g D / (4 mu K) (the saturation stress) over the slices (Janssen
  *    assumes sigma_v uniform over the section and K constant; the measured K varies near the
@@ -202,6 +206,9 @@ static int janssen(int mc) {
     }
   }
   Kmean /= nK;
+  double lam = E * NU / ((1 + NU) * (1 - 2 * NU)), Gs = E / (2 * (1 + NU));
+  double pwc = lam / (1 + (2 * lam + 2 * Gs) / (cp.penalty * 0.5 * D));
+  double Kconf = pwc / (lam + 2 * Gs - 2 * lam * pwc / (cp.penalty * 0.5 * D));
   double Ssat = RHO * G * D / (4 * MUW * Kmean), dev = 0;
   for (int q = 0; q < NBIN; q++) {
     double sj = Ssat * (1 - exp(-4 * MUW * Kmean * zb[q] / D));
@@ -237,8 +244,8 @@ static int janssen(int mc) {
     for (int q = 0; q < NBIN; q++)
       fprintf(stderr, "  %7.2f  %10.2f  %10.2f  %10.2f  %.4f\n", 1e3 * zb[q], sv[q],
               Ssat * (1 - exp(-4 * MUW * Kmean * zb[q] / D)), pw[q], Kb[q]);
-    fprintf(stderr, "  K mean (slices 3..%d) %.4f (nu/(1-nu) %.4f), K fitted to p_wall %.4f\n",
-            NBIN - 2, Kmean, NU / (1 - NU), Kfit);
+    fprintf(stderr, "  K mean (slices 3..%d) %.4f (confined, wall compliance %.4f, rigid wall "
+            "nu/(1-nu) %.4f), K fitted to p_wall %.4f\n", NBIN - 2, Kmean, Kconf, NU / (1 - NU), Kfit);
     fprintf(stderr, "  wall friction / normal %.5f (mu_w %.2f); floor %.5g N, wall %.5g N, weight "
             "%.5g N; floor predicted (fit) %.5g N; floor stress / rho g H %.4f; max |sigma_v - "
             "Janssen| / sat %.4f; decay length D/(4 mu K) %.2f mm\n", Fw_z / Nw, MUW, Ffloor, Fw_z,
@@ -253,8 +260,8 @@ static int janssen(int mc) {
   }
   snprintf(w, sizeof w, "%s: mobilised wall friction", tag);
   fail |= tu_close(w, Fw_z / Nw, MUW, 0, 1e-3);
-  snprintf(w, sizeof w, "%s: K = p_w / sigma_v vs nu / (1 - nu)", tag);
-  fail |= tu_close(w, Kmean, NU / (1 - NU), 0, 0.10);
+  snprintf(w, sizeof w, "%s: K = p_w / sigma_v vs confined elasticity with the wall compliance", tag);
+  fail |= tu_close(w, Kmean, Kconf, 0, 0.05);
   snprintf(w, sizeof w, "%s: max |sigma_v - Janssen| / saturation stress", tag);
   fail |= tu_close(w, dev / Ssat, 0, 0.05, 0);
   snprintf(w, sizeof w, "%s: floor force vs Janssen with the fitted K", tag);
