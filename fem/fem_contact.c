@@ -25,7 +25,6 @@
 #include "sa_log.h"
 
 enum { TGT_NONE = 0, TGT_PLANE, TGT_CYLINDER, TGT_MESH };
-enum { LOCK_ITER = 3 };
 
 struct FemContact {
   const FemMesh *m;
@@ -43,10 +42,6 @@ struct FemContact {
   /* committed history */
   double *anc;    /* rigid: anchor point (3 per slave) */
   int *anc_f;     /* mesh: anchor triangle (-1: none) */
-  /* stick/slip chatter guard within a substep: a node whose state flips between two tangent
-   * evaluations from the LOCK_ITER-th on is held in slip until the step is accepted (slip is
-   * admissible, |t_T| = mu t_N; a node held in stick could violate Coulomb) */
-  int *slip_prev, *slip_lock, n_tan;
   int *last_tri; /* mesh: triangle found at the last evaluation (tie-breaking) */
   double *anc_b;  /* mesh: its barycentric coordinates (3 per slave) */
   /* committed read-back */
@@ -131,10 +126,8 @@ int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactP
   SA_CALLOC(c->anc, 3 * c->ns);
   SA_CALLOC(c->anc_f, c->ns);
   SA_CALLOC(c->anc_b, 3 * c->ns);
-  SA_CALLOC(c->slip_prev, c->ns);
   SA_CALLOC(c->last_tri, c->ns);
   for (int k = 0; k < c->ns; k++) c->last_tri[k] = -1;
-  SA_CALLOC(c->slip_lock, c->ns);
   SA_CALLOC(c->gap_c, c->ns);
   SA_CALLOC(c->tn_c, c->ns);
   SA_CALLOC(c->tt_c, 3 * c->ns);
@@ -469,17 +462,12 @@ static int pair_eval(const FemContact *c, int k, const double *xl, const int *rt
 
 /* ------------------------------------------------------------------ contributor */
 
-static void note_slip(FemContact *c, int k, int slip) {
-  if (c->n_tan >= LOCK_ITER && slip != c->slip_prev[k]) c->slip_lock[k] = 1;
-  c->slip_prev[k] = slip;
-}
 
 static int contact_eval(void *ctx, FemAsmView *v) {
   FemContact *c = ctx;
   const double *x = fem_asm_positions(v);
   int wantK = fem_asm_wants_tangent(v);
   if (c->target == TGT_PLANE) plane_at(c, fem_asm_load_factor(v));
-  if (wantK) c->n_tan++;
   for (int k = 0; k < c->ns; k++) {
     int A = c->snode[k];
     const double *xs = x + 3 * A;
@@ -489,9 +477,8 @@ static int contact_eval(void *ctx, FemAsmView *v) {
     if (c->target == TGT_PLANE || c->target == TGT_CYLINDER) {
       if (!rigid_geom(c, xs, &g, n, N)) continue;
       if (!node_law(&c->prm, c->sarea[k], g, n, N, xs, c->anc + 3 * k, 0,
-                    c->slip_lock[k] ? 1 : -1, F, wantK ? dF : NULL, &tn, NULL, &slip))
+                    -1, F, wantK ? dF : NULL, &tn, NULL, &slip))
         continue;
-      if (wantK) note_slip(c, k, slip);
       if (c->prm.max_penetration > 0 && -g > c->prm.max_penetration) {
         sa_log(SA_LOG_DEBUG, "fem", "contact '%s': node %d penetrates %.3g m > %.3g m", c->slave,
                A, -g, c->prm.max_penetration);
@@ -511,9 +498,8 @@ static int contact_eval(void *ctx, FemAsmView *v) {
     int L[7], rt[3], ra[3], nl = pair_nodes(c, k, t, L, rt, ra);
     double xl[21], Fs[3], Fm[9], tt[3];
     for (int r = 0; r < nl; r++) memcpy(xl + 3 * r, x + 3 * L[r], 3 * sizeof(double));
-    if (!pair_eval(c, k, xl, rt, ra, 0, c->slip_lock[k] ? 1 : -1, Fs, Fm, &g, n, &tn, tt, &slip))
+    if (!pair_eval(c, k, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt, &slip))
       continue;
-    if (wantK) note_slip(c, k, slip);
     if (c->prm.max_penetration > 0 && -g > c->prm.max_penetration) {
       sa_log(SA_LOG_DEBUG, "fem", "contact '%s': node %d penetrates %.3g m > %.3g m", c->slave,
              A, -g, c->prm.max_penetration);
@@ -579,7 +565,7 @@ static void contact_commit(void *ctx, const double *x) {
     if (c->target == TGT_PLANE || c->target == TGT_CYLINDER) {
       if (rigid_geom(c, xs, &g, n, N)) {
         act = node_law(&c->prm, c->sarea[k], g, n, N, xs, c->anc + 3 * k, 0,
-                       c->slip_lock[k] ? 1 : -1, F, NULL, &tn, tt, &slip);
+                       -1, F, NULL, &tn, tt, &slip);
         for (int i = 0; i < 3; i++) c->anc[3 * k + i] = xs[i] - g * n[i] + tt[i] / c->prm.penalty_tangent;
       } else {
         memcpy(c->anc + 3 * k, xs, 3 * sizeof(double));
@@ -590,7 +576,7 @@ static void contact_commit(void *ctx, const double *x) {
         int L[7], rt[3], ra[3], nl = pair_nodes(c, k, t, L, rt, ra);
         double xl[21], Fs[3], Fm[9];
         for (int r = 0; r < nl; r++) memcpy(xl + 3 * r, x + 3 * L[r], 3 * sizeof(double));
-        act = pair_eval(c, k, xl, rt, ra, 0, c->slip_lock[k] ? 1 : -1, Fs, Fm, &g, n, &tn, tt,
+        act = pair_eval(c, k, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt,
                         &slip);
         memcpy(F, Fs, sizeof F);
         /* new anchor a = x_c - d_new = xs - g n + t_T / eps_T, in the triangle's (unclamped)
@@ -632,12 +618,6 @@ static void contact_commit(void *ctx, const double *x) {
     st.normal_force += c->sarea[k] * tn;
   }
   st.tangent_force = sqrt(dot3(tsum, tsum));
-  st.n_locked = 0;
-  for (int k = 0; k < c->ns; k++) {
-    st.n_locked += c->slip_lock[k];
-    c->slip_lock[k] = c->slip_prev[k] = 0;
-  }
-  c->n_tan = 0;
   c->st = st;
 }
 
@@ -700,7 +680,7 @@ int fem_contact_slaves(const FemContact *c, const int **node, const double **are
 void fem_contact_destroy(FemContact **cp) {
   if (!cp || !*cp) return;
   FemContact *c = *cp;
-  void *p[] = {c->last_tri, c->slip_prev, c->slip_lock, c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
+  void *p[] = {c->last_tri, c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
                c->gap_c, c->tn_c, c->tt_c, c->nrm_c};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
   free(c);

@@ -26,10 +26,6 @@
  * 1e-7 of the face size (truncation ~1e-14, round-off ~1e-9 relative). With friction in slip
  * the tangent is unsymmetric: the solver's AUTO choice then factorises with UMFPACK.
  *
- * Chatter guard: a node whose stick/slip state flips between consecutive Newton iterations
- * from the third on is held in slip until the step is accepted (admissible: |t_T| = mu t_N;
- * FemContactStats.n_locked counts them).
- *
  * Penalty scale: eps_N = alpha E / h (E the softer body's Young's modulus, h its element size)
  * makes the contact layer as stiff as alpha elements; the penetration under pressure p is
  * p / eps_N. docs/contact.md gives the measured effect of alpha.
@@ -88,7 +84,6 @@ typedef struct {
   double force[3];        /* total force the target exerts on the slave [N] */
   double normal_force;    /* sum of A t_N [N] */
   double tangent_force;   /* |sum of A t_T| [N] */
-  int n_locked;           /* nodes held in slip by the chatter guard in the accepted step */
 } FemContactStats;
 
 /* At the last accepted step (zeros before the first). */

@@ -76,7 +76,8 @@ static int janssen(int mc) {
   FemMaterial mat;
   if (mc) {
     const char *nm[5] = {"young", "poisson", "friction_angle", "cohesion", "dilation_angle"};
-    double val[5] = {E, NU, 28, getenv("JANSSEN_C") ? atof(getenv("JANSSEN_C")) : 100, 3};
+    double val[5] = {E, NU, 28, getenv("JANSSEN_C") ? atof(getenv("JANSSEN_C")) : 100,
+                     getenv("JANSSEN_PSI") ? atof(getenv("JANSSEN_PSI")) : 3};
     TU_CHECK(fem_material_from_law("mohr_coulomb", 5, nm, val, RHO, &mat));
   } else {
     mat = fem_material_from_e_nu(E, NU, RHO);
@@ -95,6 +96,7 @@ static int janssen(int mc) {
   FemContactParams cp = fem_contact_params_default();
   cp.penalty = (getenv("JANSSEN_ALPHA") ? atof(getenv("JANSSEN_ALPHA")) : 10.0) * E / h;
   cp.friction = MUW;
+  if (getenv("JANSSEN_ET_RATIO")) cp.penalty_tangent = atof(getenv("JANSSEN_ET_RATIO")) * cp.penalty;
   const char *sides[4] = {"s0", "s1", "s2", "s3"};
   FemContact *wall[4];
   for (int k = 0; k < 4; k++) {
@@ -110,6 +112,7 @@ static int janssen(int mc) {
   if (plane_floor) {
     FemContactParams fp = cp;
     fp.friction = 0;
+    if (getenv("JANSSEN_FLOOR_ALPHA")) fp.penalty = atof(getenv("JANSSEN_FLOOR_ALPHA")) * E / h;
     TU_CHECK(fem_contact_create(m, "bottom", &fp, &floor_c));
     TU_CHECK(fem_contact_set_plane(floor_c, (double[3]){0, 0, 0}, (double[3]){0, 0, 1}));
     TU_CHECK(fem_contact_attach(floor_c, s));
@@ -125,6 +128,12 @@ static int janssen(int mc) {
   for (int k = 0; k < 4; k++) TU_CHECK(fem_contact_set_friction(wall[k], 0));
   TU_CHECK(fem_solver_set_gravity(s, (double[3]){0, 0, -G}));
   TU_CHECK(fem_solver_solve(s));
+  if (getenv("JANSSEN_PROBE")) {
+    TU_CHECK(fem_solver_solve(s));
+    FemSolveReport rp;
+    fem_solver_report(s, &rp);
+    fprintf(stderr, "probe before friction: %d iterations\n", rp.newton_iters);
+  }
   for (int k = 0; k < 4; k++) TU_CHECK(fem_contact_set_friction(wall[k], MUW));
   if (getenv("JANSSEN_PROBE")) {
     TU_CHECK(fem_solver_solve(s));
