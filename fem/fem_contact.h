@@ -30,9 +30,10 @@
  * makes the contact layer as stiff as alpha elements; the penetration under pressure p is
  * p / eps_N. docs/contact.md gives the measured effect of alpha.
  *
- * Failure: a penetration deeper than max_penetration (when > 0), a non-finite position or a
- * failed projection make eval return SA_ERR_DOMAIN (> 0, recoverable: the line search
- * backtracks, then the substep is cut). No abort, no exit.
+ * Failure: a penetration deeper than max_penetration (when > 0) or a non-finite position make
+ * eval return SA_ERR_DOMAIN (> 0, recoverable: the line search backtracks, then the substep is
+ * cut). No abort, no exit. A slave node with no master triangle (empty master) is simply not
+ * in contact. fem_contact_create may leave a partial object in *out on failure: destroy it.
  *
  * Lifecycle: fem_contact_create(mesh, slave surface, params) -> one of set_master / set_plane /
  * set_cylinder -> fem_contact_attach(solver) (before or after setup) -> solves ->
