@@ -19,6 +19,7 @@
 #endif
 #ifdef SOFTACT_HAVE_FEM
 #include "fem.h"
+#include "fem_fill.h"
 #endif
 #ifdef SOFTACT_HAVE_DEM
 #include "dem_module.h"
@@ -34,6 +35,7 @@ static const SaModule *const modules[] = {
 #endif
 #ifdef SOFTACT_HAVE_FEM
     &fem_module,
+    &fem_triaxial_module,
 #endif
 #ifdef SOFTACT_HAVE_DEM
     &dem_module,

@@ -199,6 +199,11 @@ int fem_solver_solve(FemSolver *s);
  * (load control only); substeps itself when Newton fails. */
 int fem_solver_step_dynamic(FemSolver *s, double dt);
 void fem_solver_report(const FemSolver *s, FemSolveReport *rep);
+/* Ramp parameter (0..1) of the loads the current solve applied last: inside a contributor's
+ * eval / commit, that of the state being assembled / accepted; 1 after a completed solve, 0
+ * before the first. A contributor with a moving target (a rigid piston) interpolates between
+ * its committed and target positions with it, so the solver's cut-backs cut its motion too. */
+double fem_solver_load_factor(const FemSolver *s);
 
 /* Read-back [borrowed; valid until the next solve]: 3 * nnodes each. */
 const double *fem_solver_positions(const FemSolver *s);

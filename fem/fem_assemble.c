@@ -33,6 +33,7 @@ struct FemPairSink {
 const FemMesh *fem_asm_mesh(const FemAsmView *v) { return v->s->m; }
 const double *fem_asm_positions(const FemAsmView *v) { return v->x; }
 double fem_asm_time(const FemAsmView *v) { return v->s->time; }
+double fem_asm_load_factor(const FemAsmView *v) { return v->s->ct.lam_eval; }
 int fem_asm_wants_tangent(const FemAsmView *v) { return v->want_K; }
 
 void fem_asm_add_force(FemAsmView *v, int a, const double f[3]) {
@@ -175,7 +176,7 @@ int fem_solver_add_spring(FemSolver *s, int a, int b, double k) {
   SA_REQUIRE(k > 0 && isfinite(k), SA_ERR_INPUT, "spring stiffness %g must be > 0", k);
   FemAssembly *as = &s->as;
   if (as->nsprings == 0) {
-    FemContributor c = {"springs", springs_candidates, springs_eval, s};
+    FemContributor c = {"springs", springs_candidates, springs_eval, s, NULL};
     SA_CHECK(fem_solver_add_contributor(s, &c));
   }
   if (as->nsprings == as->cap_springs) {

@@ -16,6 +16,7 @@
 
 /* Dead loads and prescribed displacements at ramp parameter lam. */
 void fem_cont_apply_loads(FemSolver *s, double lam) {
+  s->ct.lam_eval = lam;
   for (int A = 0; A < s->N; A++)
     for (int c = 0; c < 3; c++) {
       int d = 3 * A + c;
@@ -111,6 +112,8 @@ static void commit_substep(FemSolver *s, double dt) {
   s->as.hist_t = h;
   s->time += dt;
   s->ct.fail_not_pd = 0;
+  for (int c = 0; c < s->as.ncontrib; c++)
+    if (s->as.contrib[c].commit) s->as.contrib[c].commit(s->as.contrib[c].ctx, s->x);
 }
 
 /* Loads reached at ramp parameter lam become the committed loads. */
@@ -246,6 +249,8 @@ int fem_solver_solve(FemSolver *s) {
 }
 
 void fem_solver_report(const FemSolver *s, FemSolveReport *rep) { *rep = s->ct.rep; }
+
+double fem_solver_load_factor(const FemSolver *s) { return s->ct.lam_eval; }
 
 void fem_cont_free(FemContinuation *ct) {
   free(ct->fn_c);

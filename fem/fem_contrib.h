@@ -16,6 +16,9 @@
  * the symbolic analysis and the linear solver once, and assemble again
  * (FemSolverStats.n_pattern_rebuilds counts it; factors of the old pattern are dropped).
  *
+ * History: a contributor whose forces depend on the load path (friction) keeps a committed
+ * state, updated by the commit hook when a step is accepted.
+ *
  * Lifecycle: fem_solver_add_contributor before or after setup; the descriptor is copied, ctx is
  * [borrowed] and must outlive the solver. eval runs serially (after the threaded element loop),
  * on the Newton iterate, on line-search trial states and for read-back; it must not allocate in
@@ -38,6 +41,12 @@ typedef struct {
    * the contributor's domain: the line search backtracks); < 0 fatal. */
   int (*eval)(void *ctx, FemAsmView *v);
   void *ctx;
+  /* Step accepted (may be NULL): called once per converged substep (static) / step (dynamic),
+   * after the solver committed it, with the converged positions x [in] 3 * nnodes, before the
+   * monitor. A contributor with history (contact: the stick anchors) commits it here; eval
+   * must compute its trial state from the committed history only, so a failed, cut substep
+   * needs no restore. */
+  void (*commit)(void *ctx, const double *x);
 } FemContributor;
 
 int fem_solver_add_contributor(FemSolver *s, const FemContributor *c);
@@ -48,6 +57,7 @@ void fem_pairs_add(FemPairSink *sink, int a, int b);
 const FemMesh *fem_asm_mesh(const FemAsmView *v);
 const double *fem_asm_positions(const FemAsmView *v); /* current x [borrowed] 3 * nnodes */
 double fem_asm_time(const FemAsmView *v);             /* [s] of the state being assembled */
+double fem_asm_load_factor(const FemAsmView *v);      /* ramp parameter, fem_solver_load_factor */
 int fem_asm_wants_tangent(const FemAsmView *v);
 /* f [in] 3: force on node a (internal-force sign, see above). */
 void fem_asm_add_force(FemAsmView *v, int a, const double f[3]);

@@ -11,6 +11,7 @@
 
 #include "fem_law.h"
 #include "fem_material.h"
+#include "fem_mohr_coulomb.h"
 #include "sa_error.h"
 
 #define MAX_LAWS 64
@@ -48,12 +49,16 @@ static const char *const p_mr[] = {"c10", "c01", "kappa"};
 static const char *const p_ye[] = {"c10", "c20", "c30", "kappa"};
 static const char *const p_st[] = {"e", "nu"};
 static const FemLaw builtin[] = {
-    {"neohooke", 2, p_nh, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_neohooke, NULL, eval_neohooke_mu0},
-    {"mooney_rivlin", 3, p_mr, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_mooney, NULL, eval_mooney_mu0},
-    {"yeoh", 4, p_ye, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_yeoh, NULL, eval_yeoh_mu0},
-    {"stiff_neohooke", 2, p_st, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_stiff, NULL, eval_stiff_mu0},
+    {"neohooke", 2, p_nh, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_neohooke, NULL, eval_neohooke_mu0, NULL},
+    {"mooney_rivlin", 3, p_mr, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_mooney, NULL, eval_mooney_mu0, NULL},
+    {"yeoh", 4, p_ye, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_yeoh, NULL, eval_yeoh_mu0, NULL},
+    {"stiff_neohooke", 2, p_st, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_stiff, NULL, eval_stiff_mu0, NULL},
 };
 #define NBUILTIN ((int)(sizeof builtin / sizeof *builtin))
+
+/* laws of fem/ that are objects only (no built-in kind): found and listed like registered ones */
+static const FemLaw *const library[] = {&fem_law_mohr_coulomb};
+#define NLIBRARY ((int)(sizeof library / sizeof *library))
 
 static const FemLaw *laws[MAX_LAWS];
 static int nlaws;
@@ -62,6 +67,8 @@ static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 static const FemLaw *find_locked(const char *name) {
   for (int i = 0; i < NBUILTIN; i++)
     if (!strcmp(builtin[i].name, name)) return &builtin[i];
+  for (int i = 0; i < NLIBRARY; i++)
+    if (!strcmp(library[i]->name, name)) return library[i];
   for (int i = 0; i < nlaws; i++)
     if (!strcmp(laws[i]->name, name)) return laws[i];
   return NULL;
@@ -109,9 +116,11 @@ void fem_law_list(char *buf, int n) {
   int len = 0;
   buf[0] = '\0';
   pthread_mutex_lock(&lock);
-  for (int i = 0; i < NBUILTIN + nlaws && len < n; i++)
+  for (int i = 0; i < NBUILTIN + NLIBRARY + nlaws && len < n; i++)
     len += snprintf(buf + len, (size_t)(n - len), "%s%s", i ? ", " : "",
-                    i < NBUILTIN ? builtin[i].name : laws[i - NBUILTIN]->name);
+                    i < NBUILTIN              ? builtin[i].name
+                    : i < NBUILTIN + NLIBRARY ? library[i - NBUILTIN]->name
+                                              : laws[i - NBUILTIN - NLIBRARY]->name);
   pthread_mutex_unlock(&lock);
 }
 

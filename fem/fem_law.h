@@ -49,6 +49,11 @@ typedef struct FemLaw {
   int (*check)(const double *par);
   /* initial shear modulus (ISOCHORIC kind: the mixed element's stabilisation) */
   double (*mu0)(const double *par);
+  /* symmetry that depends on the parameters (NULL: the flag `symmetric` holds for all): 1 when
+   * the tangent is symmetric for these parameters (Mohr-Coulomb: associated flow). The linear
+   * solver follows it: a model with a region whose law says 0 is factorised by UMFPACK LU
+   * without trying CHOLMOD (fem_newton.c). */
+  int (*symmetric_par)(const double *par);
 } FemLaw;
 
 /* Register law [borrowed: must outlive every use] under law->name; SA_ERR_INPUT if the name is
@@ -56,7 +61,8 @@ typedef struct FemLaw {
 int fem_law_register(const FemLaw *law);
 /* The law registered under name, or NULL. The built-in laws are always there: neohooke
  * (c10, kappa), mooney_rivlin (c10, c01, kappa), yeoh (c10, c20, c30, kappa),
- * stiff_neohooke (e, nu) - the kernels of fem_material.h behind the law interface. */
+ * stiff_neohooke (e, nu) - the kernels of fem_material.h behind the law interface - and
+ * mohr_coulomb (young, poisson, friction_angle, cohesion, dilation_angle; fem_mohr_coulomb.h). */
 const FemLaw *fem_law_find(const char *name);
 /* Index of parameter name in law, or -1. */
 int fem_law_param(const FemLaw *law, const char *name);

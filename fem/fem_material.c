@@ -77,7 +77,8 @@ int fem_material_check(const FemMaterial *m)
 
 int fem_material_symmetric(const FemMaterial *m)
 {
-  return m->law ? m->law->symmetric : 1; /* every built-in law is hyperelastic */
+  if (!m->law) return 1; /* every built-in law is hyperelastic */
+  return m->law->symmetric_par ? m->law->symmetric_par(m->par) : m->law->symmetric;
 }
 
 void fem_material_eval_vol(const FemMaterial *m, double J, double *U, double *dU, double *d2U)

@@ -81,4 +81,20 @@ double fem_mesh_volume(const FemMesh *m, int region);
 int fem_mesh_quality(const FemMesh *m, int region, double *qmin, double *qmean);
 void fem_mesh_destroy(FemMesh **m);
 
+/* Structured meshes (fem_mesh_block.c): mapped hexahedral blocks, each cell split into 6 tets
+ * (Kuhn split, conforming between cells and between blocks whose shared index directions
+ * agree), order 1 (tet4) or 2 (tet10, mid-nodes placed by the map). */
+typedef void (*FemMeshMap)(const double xi[3], const void *ctx, double X[3]);
+typedef struct {
+  int n[3];            /* cells per direction */
+  FemMeshMap map;      /* [0,1]^3 -> reference coordinates [m] */
+  const void *ctx;     /* [borrowed] for map */
+  const char *side[6]; /* surface names of sides xi0=0, xi0=1, xi1=0, xi1=1, xi2=0, xi2=1 (NULL:
+                          none; several sides may share a name) */
+} FemMeshBlock;
+/* blocks [in]; merge_tol [m]: nodes closer than this are one node. One region, "solid".
+ * *out [owned, fem_mesh_destroy]. */
+int fem_mesh_blocks(int nblocks, const FemMeshBlock *blocks, int order, double merge_tol,
+                    FemMesh **out);
+
 #endif

@@ -33,6 +33,7 @@
 #include <string.h>
 
 #include "fem_kernel_tensor.h"
+#include "fem_law.h"
 #include "sa_error.h"
 
 typedef struct {
@@ -423,3 +424,63 @@ int fem_mc_hist_init(const FemMohrCoulomb *p, const double tau0[6], double hist[
   mc_mat_to_voigt(B, hist);
   return 0;
 }
+
+/* ------------------------------------------------------------------ the law object (fem_law.h)
+ * Parameters in case-file units: young [Pa], poisson [-], friction_angle [deg], cohesion [Pa],
+ * dilation_angle [deg]. Kind FULL (the kernel returns the whole P, pressure included), history
+ * FEM_MC_NHIST with C_p^-1 = I at the start (a zero history would be a corrupt C_p^-1), no
+ * energy (W = 0: plasticity is not a potential). Symmetric exactly when the flow is associated
+ * (dilation_angle == friction_angle); the solver then tries CHOLMOD, else it goes to UMFPACK. */
+
+static FemMohrCoulomb mc_law_params(const double *par)
+{
+  const double d = M_PI / 180;
+  return (FemMohrCoulomb){par[0], par[1], par[2] * d, par[3], par[4] * d};
+}
+
+static void mc_law_init(const double *par, double *hist)
+{
+  (void)par;
+  fem_mc_hist_init(&(FemMohrCoulomb){1, 0, 0, 1, 0}, NULL, hist); /* stress-free: C_p^-1 = I */
+}
+
+static int mc_law_eval(const double *par, const FemLawCtx *ctx, const double F[9],
+                       const double *hist_old, double *hist_new, double *W, double P[9],
+                       double A[81])
+{
+  (void)ctx;
+  FemMohrCoulomb p = mc_law_params(par);
+  *W = 0;
+  int rc = fem_mc_eval(&p, F, hist_old, hist_new, P, A, NULL);
+  return rc == SA_ERR_NOT_CONVERGED ? SA_ERR_DOMAIN : rc; /* recoverable either way */
+}
+
+/* The case keys' names and units in the messages ([fill] friction_angle in deg ...). */
+static int mc_law_check(const double *par)
+{
+  SA_REQUIRE(isfinite(par[0]) && par[0] > 0, SA_ERR_INPUT,
+             "mohr_coulomb: young = %g Pa must be > 0", par[0]);
+  SA_REQUIRE(isfinite(par[1]) && par[1] > -1 && par[1] < 0.5, SA_ERR_INPUT,
+             "mohr_coulomb: poisson = %g must be in (-1, 0.5)", par[1]);
+  SA_REQUIRE(isfinite(par[2]) && par[2] >= 0 && par[2] < 90, SA_ERR_INPUT,
+             "mohr_coulomb: friction_angle = %g deg must be in [0, 90)", par[2]);
+  SA_REQUIRE(isfinite(par[3]) && par[3] >= 0, SA_ERR_INPUT,
+             "mohr_coulomb: cohesion = %g Pa must be >= 0", par[3]);
+  SA_REQUIRE(par[2] > 0 || par[3] > 0, SA_ERR_INPUT,
+             "mohr_coulomb: cohesion must be > 0 when friction_angle = 0 (no strength at all)");
+  SA_REQUIRE(isfinite(par[4]) && par[4] >= 0 && par[4] <= par[2], SA_ERR_INPUT,
+             "mohr_coulomb: dilation_angle = %g deg must be in [0, friction_angle = %g deg]",
+             par[4], par[2]);
+  FemMohrCoulomb p = mc_law_params(par);
+  return fem_mc_check(&p);
+}
+
+static int mc_law_symmetric(const double *par) { return par[4] == par[2]; }
+
+static double mc_law_mu0(const double *par) { return par[0] / (2 * (1 + par[1])); }
+
+static const char *const mc_law_names[] = {"young", "poisson", "friction_angle", "cohesion",
+                                           "dilation_angle"};
+const FemLaw fem_law_mohr_coulomb = {"mohr_coulomb", 5, mc_law_names, FEM_MC_NHIST, 0,
+                                     FEM_LAW_FULL, mc_law_init, mc_law_eval, mc_law_check,
+                                     mc_law_mu0, mc_law_symmetric};

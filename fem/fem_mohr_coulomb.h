@@ -90,4 +90,12 @@ int fem_mc_eval(const FemMohrCoulomb *p, const double F[9], const double *hist_n
  * axis z and vertical stress sv < 0: tau0 = {K0 sv, K0 sv, sv, 0, 0, 0}, K0 = 1 - sin(phi). */
 int fem_mc_hist_init(const FemMohrCoulomb *p, const double tau0[6], double hist[FEM_MC_NHIST]);
 
+/* The kernel as a law object (fem_law.h), found by fem_law_find("mohr_coulomb"): parameters
+ * young [Pa], poisson [-], friction_angle [deg], cohesion [Pa], dilation_angle [deg]; kind
+ * FEM_LAW_FULL; FEM_MC_NHIST history values starting stress-free (C_p^-1 = I); a return that
+ * finds no admissible state is SA_ERR_DOMAIN (recoverable); symmetric (symmetric_par) exactly
+ * when dilation_angle == friction_angle, else the solver factorises with UMFPACK. */
+struct FemLaw;
+extern const struct FemLaw fem_law_mohr_coulomb;
+
 #endif

@@ -69,7 +69,10 @@ static int factorize(FemSolver *s, const StepKind *sk) {
    * substep (the load increment applied to the converged state) is usually positive definite
    * again near the new equilibrium, and a failed CHOLMOD attempt costs at most one Cholesky
    * (quick return at the first non-positive pivot), ~6x less than the LU it would replace. */
-  int sym = s->prm.linsolver == FEM_LINSOLVER_AUTO;
+  /* The laws' flags decide first (a non-associated plastic region makes the tangent
+   * unsymmetric as soon as it yields); with symmetric laws the measured asymmetry still guards
+   * against an unsymmetric contributor (e.g. frictional contact). */
+  int sym = s->prm.linsolver == FEM_LINSOLVER_AUTO && !s->nw.laws_unsym;
   if (sym) {
     double asym = fem_linsolve_asymmetry(s->dm.lin, s->as.val);
     s->st.asymmetry = asym;
@@ -341,6 +344,12 @@ int fem_newton_alloc(FemSolver *s) {
   double **v[] = {&s->nw.R, &s->nw.da, &s->nw.db, &s->nw.du, &s->nw.rhs, &s->nw.qf, &s->nw.gf};
   for (size_t i = 0; i < sizeof v / sizeof *v; i++) SA_CALLOC(*v[i], nf);
   SA_CALLOC(s->nw.u_it, s->ndof);
+  int nreg = s->m->nregions > 0 ? s->m->nregions : 1;
+  s->nw.laws_unsym = 0;
+  for (int r = 0; r < nreg; r++)
+    if (!fem_material_symmetric(&s->mats[r])) s->nw.laws_unsym = 1;
+  if (s->nw.laws_unsym && s->prm.linsolver == FEM_LINSOLVER_AUTO)
+    sa_log(SA_LOG_INFO, "fem", "a region's law has an unsymmetric tangent: UMFPACK LU");
   return 0;
 }
 

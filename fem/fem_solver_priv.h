@@ -79,6 +79,8 @@ typedef struct { /* fem_newton.c */
   double *u_it;                             /* last accepted Newton iterate (ndof) */
   double p_it;
   int last_sym;   /* symmetric path used at the last factorisation */
+  int laws_unsym; /* a region's law declares an unsymmetric tangent (fem_material_symmetric):
+                   * UMFPACK LU directly, no CHOLMOD attempt and no asymmetry measurement */
   int saw_not_pd; /* a factorisation in the current substep was not positive definite (the
                    * fallback is logged once per substep; CHOLMOD is still tried every time) */
   int lu_substep; /* LU factorisations in the current substep */
@@ -100,6 +102,8 @@ typedef struct { /* fem_continuation.c */
   double *fn_c, *fn_t, *up_c, *up_t;
   double V_goal, V_last, V_prev, p_last, p_prev;
   double lam_total;  /* ramp parameters completed since creation */
+  double lam_eval;   /* ramp parameter of the loads last applied (the state being assembled;
+                      * 1 after a completed solve): contributors' moving targets follow it */
   int step_count;    /* substeps attempted since creation (log numbering) */
   double dl_keep;    /* increment carried over to the next ramp */
   double slope0;     /* first measured dp/dV (stiffness reference) */

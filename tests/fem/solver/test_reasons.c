@@ -70,7 +70,7 @@ static int run(FemMesh *m, int kind, Ground *g, int max_iter, int line_search,
   TU_CHECK(fem_solver_create(m, &mat, &prm, &s));
   TU_CHECK(fem_solver_fix_surface(s, "clamp", FEM_XYZ));
   if (kind == CONTRIB) {
-    FemContributor c = {"ground", NULL, ground_eval, g};
+    FemContributor c = {"ground", NULL, ground_eval, g, NULL};
     TU_CHECK(fem_solver_add_contributor(s, &c));
   }
   if (kind == HOOK) fem_solver_set_domain_check(s, refuse_motion, NULL);

@@ -1,0 +1,688 @@
+/* fem_contact.c - node-to-surface penalty contact with Coulomb friction as an assembly
+ * contributor (fem_contact.h has the model; docs/contact.md the method, parameters and
+ * measured behaviour).
+ *
+ * Per slave node (x its position, A its reference tributary area), target geometry g, n and
+ * N = dn/dx (plane: g = (x - p).n, N = 0; cylinder wall, slave inside: r = (I - a a)(x - p),
+ * rho = |r|, e = r / rho, g = R - rho, n = -e, N = -(I - a a - e e) / rho; flat master
+ * triangle: closest point x_c, g = (x - x_c).n):
+ *   t_N = -eps_N g  (g < 0),   w = x - a_anchor,  s = n.w,  d = w - s n = P w,
+ *   stick t_T = -eps_T d;   slip (eps_T |d| > mu t_N)  t_T = -mu t_N d / |d|,
+ *   F = A (t_N n + t_T)  (force of the target on the node).
+ * Exact derivatives (rigid targets), with dg/dx = n:
+ *   dt_N/dx = -eps_N n,   D = dd/dx = I - s N - n (x) (n + N^T w),
+ *   stick dt_T/dx = -eps_T D,  slip dt_T/dx = -mu [dhat (x) dt_N/dx + t_N / |d| (I - dhat dhat) D],
+ *   dF/dx = A [n (x) dt_N/dx + t_N N + dt_T/dx].
+ * The contributor adds f_c = -F and K_c = -dF/dx (fem_contrib.h: internal-force sign). */
+#include "fem_contact.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fem_contrib.h"
+#include "sa_error.h"
+#include "sa_log.h"
+
+enum { TGT_NONE = 0, TGT_PLANE, TGT_CYLINDER, TGT_MESH };
+
+struct FemContact {
+  const FemMesh *m;
+  FemContactParams prm;
+  char slave[64], master[64];
+  int target;
+  double pp[3], pn[3];                   /* plane (at the state being evaluated) */
+  double pp_c[3], pp_t[3];               /* plane point committed / target (moves with the
+                                          * solver's ramp parameter) */
+  double cp[3], ca[3], R, smin, smax;    /* cylinder */
+  int nt, *tri;                          /* master flat triangles (3 nodes each) */
+  int ns, *snode;                        /* slave nodes */
+  double *sarea;                         /* reference tributary areas */
+  int *slave_mark;                       /* N: slave index + 1 or 0 */
+  /* committed history */
+  double *anc;    /* rigid: anchor point (3 per slave) */
+  int *anc_f;     /* mesh: anchor triangle (-1: none) */
+  int *last_tri; /* mesh: triangle found at the last evaluation (tie-breaking) */
+  double *anc_b;  /* mesh: its barycentric coordinates (3 per slave) */
+  /* committed read-back */
+  double *gap_c, *tn_c, *tt_c, *nrm_c;
+  FemContactStats st;
+  FemSolver *s;
+  int attached;
+};
+
+FemContactParams fem_contact_params_default(void) {
+  FemContactParams p = {0};
+  return p;
+}
+
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void cross3(const double *a, const double *b, double *c) {
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The flat (sub-)triangles of a face: tri3 itself, tri6 its 4 corner/mid-node triangles
+ * (orientation kept). Returns the count written to t [out] 12. */
+static int face_tris(const int *f, int nfn, int *t) {
+  if (nfn == 3) {
+    memcpy(t, f, 3 * sizeof *t);
+    return 1;
+  }
+  static const int sub[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}};
+  for (int k = 0; k < 4; k++)
+    for (int i = 0; i < 3; i++) t[3 * k + i] = f[sub[k][i]];
+  return 4;
+}
+
+static double tri_area(const double *X, const int *t) {
+  double u[3], v[3], n[3];
+  for (int i = 0; i < 3; i++) {
+    u[i] = X[3 * t[1] + i] - X[3 * t[0] + i];
+    v[i] = X[3 * t[2] + i] - X[3 * t[0] + i];
+  }
+  cross3(u, v, n);
+  return 0.5 * sqrt(dot3(n, n));
+}
+
+int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactParams *prm,
+                       FemContact **out) {
+  *out = NULL;
+  SA_REQUIRE(mesh && slave && prm, SA_ERR_INPUT, "contact: mesh, slave surface and parameters needed");
+  SA_REQUIRE(prm->penalty > 0 && isfinite(prm->penalty), SA_ERR_INPUT,
+             "contact: penalty %g must be > 0 [Pa/m]", prm->penalty);
+  SA_REQUIRE(prm->penalty_tangent >= 0 && isfinite(prm->penalty_tangent), SA_ERR_INPUT,
+             "contact: penalty_tangent %g must be >= 0", prm->penalty_tangent);
+  SA_REQUIRE(prm->friction >= 0 && isfinite(prm->friction), SA_ERR_INPUT,
+             "contact: friction %g must be >= 0", prm->friction);
+  SA_REQUIRE(prm->max_penetration >= 0 && prm->search_radius >= 0, SA_ERR_INPUT,
+             "contact: max_penetration and search_radius must be >= 0");
+  const FemSurface *sf = fem_mesh_find_surface(mesh, slave);
+  SA_REQUIRE(sf, SA_ERR_INPUT, "contact: no surface '%s' in the mesh", slave);
+  FemContact *c = calloc(1, sizeof *c);
+  SA_REQUIRE(c, SA_ERR_MEMORY, "contact");
+  *out = c;
+  c->m = mesh;
+  c->prm = *prm;
+  if (c->prm.penalty_tangent == 0) c->prm.penalty_tangent = c->prm.penalty;
+  snprintf(c->slave, sizeof c->slave, "%s", slave);
+  c->ns = sf->nnodes;
+  SA_CALLOC(c->snode, c->ns);
+  SA_CALLOC(c->sarea, c->ns);
+  SA_CALLOC(c->slave_mark, mesh->nnodes);
+  for (int k = 0; k < c->ns; k++) {
+    c->snode[k] = sf->nodes[k];
+    c->slave_mark[sf->nodes[k]] = k + 1;
+  }
+  for (int f = 0; f < sf->nfaces; f++) {
+    int t[12], nt = face_tris(sf->faces + (size_t)f * sf->nfn, sf->nfn, t);
+    for (int j = 0; j < nt; j++) {
+      double a = tri_area(mesh->xyz, t + 3 * j) / 3;
+      for (int i = 0; i < 3; i++) c->sarea[c->slave_mark[t[3 * j + i]] - 1] += a;
+    }
+  }
+  SA_CALLOC(c->anc, 3 * c->ns);
+  SA_CALLOC(c->anc_f, c->ns);
+  SA_CALLOC(c->anc_b, 3 * c->ns);
+  SA_CALLOC(c->last_tri, c->ns);
+  for (int k = 0; k < c->ns; k++) c->last_tri[k] = -1;
+  SA_CALLOC(c->gap_c, c->ns);
+  SA_CALLOC(c->tn_c, c->ns);
+  SA_CALLOC(c->tt_c, 3 * c->ns);
+  SA_CALLOC(c->nrm_c, 3 * c->ns);
+  for (int k = 0; k < c->ns; k++) {
+    c->anc_f[k] = -1;
+    memcpy(c->anc + 3 * k, mesh->xyz + 3 * c->snode[k], 3 * sizeof(double));
+  }
+  return 0;
+}
+
+static int check_target(FemContact *c) {
+  SA_REQUIRE(c->target == TGT_NONE || !c->attached, SA_ERR_INPUT,
+             "contact '%s': the target kind cannot change after attach", c->slave);
+  return 0;
+}
+
+int fem_contact_set_master(FemContact *c, const char *master) {
+  SA_CHECK(check_target(c));
+  const FemSurface *mf = fem_mesh_find_surface(c->m, master);
+  SA_REQUIRE(mf, SA_ERR_INPUT, "contact: no master surface '%s' in the mesh", master);
+  int per = mf->nfn == 3 ? 1 : 4;
+  free(c->tri);
+  c->tri = malloc((size_t)3 * per * mf->nfaces * sizeof *c->tri);
+  SA_REQUIRE(c->tri, SA_ERR_MEMORY, "contact master triangles");
+  c->nt = 0;
+  for (int f = 0; f < mf->nfaces; f++)
+    c->nt += face_tris(mf->faces + (size_t)f * mf->nfn, mf->nfn, c->tri + 3 * c->nt);
+  snprintf(c->master, sizeof c->master, "%s", master);
+  c->target = TGT_MESH;
+  return 0;
+}
+
+int fem_contact_set_plane(FemContact *c, const double p[3], const double n[3]) {
+  SA_REQUIRE(c->target == TGT_NONE || c->target == TGT_PLANE, SA_ERR_INPUT,
+             "contact '%s' already has another target", c->slave);
+  double l = sqrt(dot3(n, n));
+  SA_REQUIRE(l > 0 && isfinite(l) && isfinite(dot3(p, p)), SA_ERR_INPUT,
+             "contact plane: normal must be non-zero and finite");
+  for (int i = 0; i < 3; i++) {
+    c->pp[i] = c->pp_c[i] = c->pp_t[i] = p[i];
+    c->pn[i] = n[i] / l;
+  }
+  c->target = TGT_PLANE;
+  return 0;
+}
+
+int fem_contact_move_plane(FemContact *c, const double p[3]) {
+  SA_REQUIRE(c->target == TGT_PLANE, SA_ERR_INPUT, "contact '%s': move_plane needs a plane target",
+             c->slave);
+  SA_REQUIRE(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]), SA_ERR_INPUT,
+             "contact '%s': plane target not finite", c->slave);
+  memcpy(c->pp_t, p, sizeof c->pp_t);
+  return 0;
+}
+
+/* Plane point at ramp parameter lam. */
+static void plane_at(FemContact *c, double lam) {
+  for (int i = 0; i < 3; i++) c->pp[i] = c->pp_c[i] + lam * (c->pp_t[i] - c->pp_c[i]);
+}
+
+int fem_contact_set_cylinder(FemContact *c, const double p[3], const double a[3], double R,
+                             double smin, double smax) {
+  SA_CHECK(check_target(c));
+  double l = sqrt(dot3(a, a));
+  SA_REQUIRE(l > 0 && isfinite(l) && R > 0 && isfinite(R) && smin < smax, SA_ERR_INPUT,
+             "contact cylinder: axis non-zero, radius %g > 0 and smin %g < smax %g needed", R,
+             smin, smax);
+  for (int i = 0; i < 3; i++) {
+    c->cp[i] = p[i];
+    c->ca[i] = a[i] / l;
+  }
+  c->R = R;
+  c->smin = smin;
+  c->smax = smax;
+  c->target = TGT_CYLINDER;
+  return 0;
+}
+
+/* ------------------------------------------------------------------ the law at one node */
+
+/* Returns 1 when in contact (g < 0 or frozen), 0 otherwise. Inputs: g, n, N (NULL = 0), x,
+ * anchor a, area A; slip_in: -1 decide, 0/1 frozen (finite differences). Outputs: F force of
+ * the target on the node, dF = dF/dx (NULL: not wanted), tn, tt (traction), *slip. */
+static int node_law(const FemContactParams *p, double A, double g, const double n[3],
+                    const double *N, const double x[3], const double a[3], int frozen, int slip_in,
+                    double F[3], double *dF, double *tn_out, double tt[3], int *slip) {
+  if (g > 0 && !frozen) { /* g = 0 is active: touching bodies get the contact stiffness */
+    memset(F, 0, 3 * sizeof *F);
+    if (dF) memset(dF, 0, 9 * sizeof *dF);
+    if (tt) memset(tt, 0, 3 * sizeof *tt);
+    *tn_out = 0;
+    *slip = 0;
+    return 0;
+  }
+  double eN = p->penalty, eT = p->penalty_tangent, mu = p->friction;
+  double tn = -eN * g, w[3], d[3], t[3];
+  for (int i = 0; i < 3; i++) w[i] = x[i] - a[i];
+  double s = dot3(n, w);
+  for (int i = 0; i < 3; i++) d[i] = w[i] - s * n[i];
+  double dn = sqrt(dot3(d, d));
+  /* mu = 0: no tangential force at all (the stick set is the single point d = 0, where a
+   * stick stiffness would not be the derivative of the zero force around it) */
+  /* a slip vector at round-off level (e.g. the reference state, t_N = 0) has no direction:
+   * stick */
+  double dtiny = 1e-13 * (fabs(x[0]) + fabs(x[1]) + fabs(x[2]) + fabs(a[0]) + fabs(a[1]) + fabs(a[2]));
+  int sl = mu == 0 ? 1 : slip_in >= 0 ? slip_in : (eT * dn > mu * tn && dn > dtiny);
+  if (sl && dn == 0 && mu > 0) sl = 0; /* frozen slip with no slip vector: nothing to orient */
+  for (int i = 0; i < 3; i++) t[i] = sl ? (mu > 0 ? -mu * tn * d[i] / dn : 0) : -eT * d[i];
+  for (int i = 0; i < 3; i++) F[i] = A * (tn * n[i] + t[i]);
+  *tn_out = tn;
+  if (tt) memcpy(tt, t, 3 * sizeof *t);
+  *slip = sl;
+  if (!dF) return 1;
+  double dtn[3], D[9], Ntw[3] = {0, 0, 0};
+  for (int j = 0; j < 3; j++) dtn[j] = -eN * n[j];
+  if (N)
+    for (int j = 0; j < 3; j++) Ntw[j] = N[0 * 3 + j] * w[0] + N[1 * 3 + j] * w[1] + N[2 * 3 + j] * w[2];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      D[3 * i + j] = (i == j) - (N ? s * N[3 * i + j] : 0) - n[i] * (n[j] + Ntw[j]);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      double dt;
+      if (!sl) dt = -eT * D[3 * i + j];
+      else if (mu == 0) dt = 0;
+      else {
+        double pd = 0;
+        for (int k = 0; k < 3; k++) pd += ((i == k) - d[i] * d[k] / (dn * dn)) * D[3 * k + j];
+        dt = -mu * (d[i] / dn * dtn[j] + tn / dn * pd);
+      }
+      dF[3 * i + j] = A * (n[i] * dtn[j] + (N ? tn * N[3 * i + j] : 0) + dt);
+    }
+  return 1;
+}
+
+/* Rigid target geometry at x: g, n, N. Returns 0 when the node cannot touch it (outside the
+ * cylinder's axial extent or on its axis). */
+static int rigid_geom(const FemContact *c, const double x[3], double *g, double n[3], double N[9]) {
+  if (c->target == TGT_PLANE) {
+    double w[3] = {x[0] - c->pp[0], x[1] - c->pp[1], x[2] - c->pp[2]};
+    *g = dot3(w, c->pn);
+    memcpy(n, c->pn, 3 * sizeof *n);
+    memset(N, 0, 9 * sizeof *N);
+    return 1;
+  }
+  double w[3] = {x[0] - c->cp[0], x[1] - c->cp[1], x[2] - c->cp[2]}, s = dot3(w, c->ca), r[3];
+  if (s < c->smin || s > c->smax) return 0;
+  for (int i = 0; i < 3; i++) r[i] = w[i] - s * c->ca[i];
+  double rho = sqrt(dot3(r, r));
+  if (rho <= 1e-12 * c->R) return 0;
+  double e[3] = {r[0] / rho, r[1] / rho, r[2] / rho};
+  *g = c->R - rho;
+  for (int i = 0; i < 3; i++) {
+    n[i] = -e[i];
+    for (int j = 0; j < 3; j++) N[3 * i + j] = -((i == j) - c->ca[i] * c->ca[j] - e[i] * e[j]) / rho;
+  }
+  return 1;
+}
+
+/* ------------------------------------------------------------------ mesh master */
+
+/* Closest point on triangle (a, b, c) to p (Ericson, Real-Time Collision Detection, 5.1.5):
+ * barycentric coordinates b [out] 3; returns the squared distance. */
+static double closest_on_tri(const double *p, const double *A, const double *B, const double *C,
+                             double *bc) {
+  double ab[3], ac[3], ap[3];
+  for (int i = 0; i < 3; i++) {
+    ab[i] = B[i] - A[i];
+    ac[i] = C[i] - A[i];
+    ap[i] = p[i] - A[i];
+  }
+  double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+  double u = 0, v = 0; /* weights of B and C */
+  if (d1 <= 0 && d2 <= 0) goto done;
+  double bp[3], cp[3];
+  for (int i = 0; i < 3; i++) {
+    bp[i] = p[i] - B[i];
+    cp[i] = p[i] - C[i];
+  }
+  double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+  if (d3 >= 0 && d4 <= d3) {
+    u = 1;
+    goto done;
+  }
+  double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    u = d1 / (d1 - d3);
+    goto done;
+  }
+  double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+  if (d6 >= 0 && d5 <= d6) {
+    v = 1;
+    goto done;
+  }
+  double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    v = d2 / (d2 - d6);
+    goto done;
+  }
+  double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    v = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    u = 1 - v;
+    goto done;
+  }
+  {
+    double den = 1 / (va + vb + vc);
+    u = vb * den;
+    v = vc * den;
+  }
+done:
+  bc[0] = 1 - u - v;
+  bc[1] = u;
+  bc[2] = v;
+  double q2 = 0;
+  for (int i = 0; i < 3; i++) {
+    double q = A[i] + u * ab[i] + v * ac[i] - p[i];
+    q2 += q * q;
+  }
+  return q2;
+}
+
+static void tri_normal(const double *A, const double *B, const double *C, double n[3]) {
+  double u[3], v[3];
+  for (int i = 0; i < 3; i++) {
+    u[i] = B[i] - A[i];
+    v[i] = C[i] - A[i];
+  }
+  cross3(u, v, n);
+  double l = sqrt(dot3(n, n));
+  for (int i = 0; i < 3; i++) n[i] /= l;
+}
+
+/* Closest master triangle to the node at xs (not containing node): index or -1. Ties (a node
+ * over a master edge or vertex is equally close to every triangle sharing it) keep the
+ * triangle prev of the last evaluation: switching between them from one Newton iterate to the
+ * next changes the force distribution by round-off-driven jumps (a residual floor). */
+static int mesh_search(const FemContact *c, int node, const double *x, const double *xs, int prev) {
+  double best = INFINITY;
+  int bt = -1;
+  for (int t = 0; t < c->nt; t++) {
+    const int *v = c->tri + 3 * t;
+    if (v[0] == node || v[1] == node || v[2] == node) continue;
+    const double *A = x + 3 * v[0], *B = x + 3 * v[1], *C = x + 3 * v[2];
+    /* bounding-sphere reject */
+    double ctr[3], r2 = 0, dc = 0;
+    for (int i = 0; i < 3; i++) ctr[i] = (A[i] + B[i] + C[i]) / 3;
+    for (int k = 0; k < 3; k++) {
+      const double *P = x + 3 * v[k];
+      double q = 0;
+      for (int i = 0; i < 3; i++) q += (P[i] - ctr[i]) * (P[i] - ctr[i]);
+      if (q > r2) r2 = q;
+    }
+    for (int i = 0; i < 3; i++) dc += (xs[i] - ctr[i]) * (xs[i] - ctr[i]);
+    double lo = sqrt(dc) - sqrt(r2);
+    if (lo > 0 && lo * lo > best) continue;
+    double bc[3], d2 = closest_on_tri(xs, A, B, C, bc);
+    if (d2 < best) {
+      best = d2;
+      bt = t;
+    }
+  }
+  if (prev >= 0 && prev != bt && bt >= 0) {
+    const int *v = c->tri + 3 * prev;
+    double bc[3], d2 = closest_on_tri(xs, x + 3 * v[0], x + 3 * v[1], x + 3 * v[2], bc);
+    const double *A = x + 3 * c->tri[3 * bt], *B = x + 3 * c->tri[3 * bt + 1];
+    double h2 = (A[0] - B[0]) * (A[0] - B[0]) + (A[1] - B[1]) * (A[1] - B[1]) + (A[2] - B[2]) * (A[2] - B[2]);
+    if (d2 <= best + 1e-20 * h2) bt = prev;
+  }
+  return bt;
+}
+
+/* Force of master triangle t on slave k, with the positions of the slave xs, the triangle's
+ * nodes xt (9) and the anchor triangle's nodes xa (9). Fs [out] 3 on the slave, Fm [out] 9 on
+ * the triangle's nodes. frozen/slip_in as node_law. Returns active. */
+static int mesh_pair(const FemContact *c, int k, const double *xs, const double *xt,
+                     const double *xa, int frozen, int slip_in, double *Fs, double *Fm,
+                     double *g_out, double *n_out, double *tn, double *tt, int *slip) {
+  double bc[3], n[3], xc[3], a[3], g;
+  closest_on_tri(xs, xt, xt + 3, xt + 6, bc);
+  tri_normal(xt, xt + 3, xt + 6, n);
+  for (int i = 0; i < 3; i++) {
+    xc[i] = bc[0] * xt[i] + bc[1] * xt[3 + i] + bc[2] * xt[6 + i];
+    a[i] = c->anc_b[3 * k] * xa[i] + c->anc_b[3 * k + 1] * xa[3 + i] + c->anc_b[3 * k + 2] * xa[6 + i];
+  }
+  double w[3] = {xs[0] - xc[0], xs[1] - xc[1], xs[2] - xc[2]};
+  g = dot3(w, n);
+  int act = node_law(&c->prm, c->sarea[k], g, n, NULL, xs, a, frozen, slip_in, Fs, NULL, tn, tt, slip);
+  for (int j = 0; j < 3; j++)
+    for (int i = 0; i < 3; i++) Fm[3 * j + i] = -bc[j] * Fs[i];
+  if (g_out) *g_out = g;
+  if (n_out) memcpy(n_out, n, 3 * sizeof *n);
+  return act;
+}
+
+/* Local node list of a pair: slave, triangle, anchor triangle (deduplicated). */
+static int pair_nodes(const FemContact *c, int k, int t, int *L, int *rt, int *ra) {
+  int nl = 0;
+  int cand[7] = {c->snode[k], c->tri[3 * t], c->tri[3 * t + 1], c->tri[3 * t + 2], -1, -1, -1};
+  int fa = c->anc_f[k] >= 0 ? c->anc_f[k] : t;
+  for (int i = 0; i < 3; i++) cand[4 + i] = c->tri[3 * fa + i];
+  int idx[7];
+  for (int q = 0; q < 7; q++) {
+    int f = -1;
+    for (int r = 0; r < nl; r++)
+      if (L[r] == cand[q]) f = r;
+    if (f < 0) {
+      L[nl] = cand[q];
+      f = nl++;
+    }
+    idx[q] = f;
+  }
+  for (int i = 0; i < 3; i++) {
+    rt[i] = idx[1 + i];
+    ra[i] = idx[4 + i];
+  }
+  return nl;
+}
+
+static int pair_eval(const FemContact *c, int k, const double *xl, const int *rt,
+                     const int *ra, int frozen, int slip_in, double *Fs, double *Fm, double *g,
+                     double *n, double *tn, double *tt, int *slip) {
+  double xt[9], xa[9];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      xt[3 * i + j] = xl[3 * rt[i] + j];
+      xa[3 * i + j] = xl[3 * ra[i] + j];
+    }
+  return mesh_pair(c, k, xl, xt, xa, frozen, slip_in, Fs, Fm, g, n, tn, tt, slip);
+}
+
+/* ------------------------------------------------------------------ contributor */
+
+
+static int contact_eval(void *ctx, FemAsmView *v) {
+  FemContact *c = ctx;
+  const double *x = fem_asm_positions(v);
+  int wantK = fem_asm_wants_tangent(v);
+  if (c->target == TGT_PLANE) plane_at(c, fem_asm_load_factor(v));
+  for (int k = 0; k < c->ns; k++) {
+    int A = c->snode[k];
+    const double *xs = x + 3 * A;
+    if (!isfinite(xs[0]) || !isfinite(xs[1]) || !isfinite(xs[2])) return SA_ERR_DOMAIN;
+    double F[3], dF[9], tn, g, n[3], N[9];
+    int slip;
+    if (c->target == TGT_PLANE || c->target == TGT_CYLINDER) {
+      if (!rigid_geom(c, xs, &g, n, N)) continue;
+      if (!node_law(&c->prm, c->sarea[k], g, n, N, xs, c->anc + 3 * k, 0,
+                    -1, F, wantK ? dF : NULL, &tn, NULL, &slip))
+        continue;
+      if (c->prm.max_penetration > 0 && -g > c->prm.max_penetration) {
+        sa_log(SA_LOG_DEBUG, "fem", "contact '%s': node %d penetrates %.3g m > %.3g m", c->slave,
+               A, -g, c->prm.max_penetration);
+        return SA_ERR_DOMAIN;
+      }
+      double f[3] = {-F[0], -F[1], -F[2]}, K[9];
+      fem_asm_add_force(v, A, f);
+      if (wantK) {
+        for (int i = 0; i < 9; i++) K[i] = -dF[i];
+        fem_asm_add_block(v, A, A, K);
+      }
+      continue;
+    }
+    int t = mesh_search(c, A, x, xs, c->last_tri[k]);
+    c->last_tri[k] = t;
+    if (t < 0) continue;
+    int L[7], rt[3], ra[3], nl = pair_nodes(c, k, t, L, rt, ra);
+    double xl[21], Fs[3], Fm[9], tt[3];
+    for (int r = 0; r < nl; r++) memcpy(xl + 3 * r, x + 3 * L[r], 3 * sizeof(double));
+    if (!pair_eval(c, k, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt, &slip))
+      continue;
+    if (c->prm.max_penetration > 0 && -g > c->prm.max_penetration) {
+      sa_log(SA_LOG_DEBUG, "fem", "contact '%s': node %d penetrates %.3g m > %.3g m", c->slave,
+             A, -g, c->prm.max_penetration);
+      return SA_ERR_DOMAIN;
+    }
+    double f[3] = {-Fs[0], -Fs[1], -Fs[2]};
+    fem_asm_add_force(v, A, f);
+    for (int j = 0; j < 3; j++) {
+      double fm[3] = {-Fm[3 * j], -Fm[3 * j + 1], -Fm[3 * j + 2]};
+      fem_asm_add_force(v, c->tri[3 * t + j], fm);
+    }
+    if (!wantK) continue;
+    /* central differences of the pair's forces, discrete state frozen */
+    const double *P = xl + 3 * rt[0];
+    double h = 0;
+    for (int j = 1; j < 3; j++) {
+      const double *Q = xl + 3 * rt[j];
+      double l = sqrt((Q[0] - P[0]) * (Q[0] - P[0]) + (Q[1] - P[1]) * (Q[1] - P[1]) +
+                      (Q[2] - P[2]) * (Q[2] - P[2]));
+      if (l > h) h = l;
+    }
+    h *= 1e-7;
+    double Kc[4][7][9]; /* rows: slave, triangle nodes; columns: local nodes */
+    memset(Kc, 0, sizeof Kc);
+    for (int r = 0; r < nl; r++)
+      for (int j = 0; j < 3; j++) {
+        double Fp[12], Fmn[12], gg, nn[3], tnn, ttt[3];
+        int sp;
+        double keep = xl[3 * r + j];
+        xl[3 * r + j] = keep + h;
+        pair_eval(c, k, xl, rt, ra, 1, slip, Fp, Fp + 3, &gg, nn, &tnn, ttt, &sp);
+        xl[3 * r + j] = keep - h;
+        pair_eval(c, k, xl, rt, ra, 1, slip, Fmn, Fmn + 3, &gg, nn, &tnn, ttt, &sp);
+        xl[3 * r + j] = keep;
+        for (int q = 0; q < 4; q++)
+          for (int i = 0; i < 3; i++)
+            Kc[q][r][3 * i + j] = -(Fp[3 * q + i] - Fmn[3 * q + i]) / (2 * h);
+      }
+    int rows[4] = {A, c->tri[3 * t], c->tri[3 * t + 1], c->tri[3 * t + 2]};
+    for (int q = 0; q < 4; q++)
+      for (int r = 0; r < nl; r++) fem_asm_add_block(v, rows[q], L[r], Kc[q][r]);
+  }
+  return 0;
+}
+
+/* Commit at the accepted positions x: anchors (the elastic tangential slip after the return
+ * map is kept, the slipped part is absorbed by moving the anchor) and the read-back state. */
+static void contact_commit(void *ctx, const double *x) {
+  FemContact *c = ctx;
+  if (c->target == TGT_PLANE) {
+    double lam = c->s ? fem_solver_load_factor(c->s) : 0.0;
+    plane_at(c, lam);
+    /* a completed ramp makes the target the committed position */
+    if (lam >= 1.0 - 1e-12) memcpy(c->pp_c, c->pp_t, sizeof c->pp_c);
+  }
+  FemContactStats st = {0};
+  double tsum[3] = {0, 0, 0};
+  for (int k = 0; k < c->ns; k++) {
+    int A = c->snode[k];
+    const double *xs = x + 3 * A;
+    double F[3], tn = 0, tt[3] = {0, 0, 0}, g = INFINITY, n[3] = {0, 0, 0}, N[9];
+    int slip = 0, act = 0;
+    if (c->target == TGT_PLANE || c->target == TGT_CYLINDER) {
+      if (rigid_geom(c, xs, &g, n, N)) {
+        act = node_law(&c->prm, c->sarea[k], g, n, N, xs, c->anc + 3 * k, 0,
+                       -1, F, NULL, &tn, tt, &slip);
+        for (int i = 0; i < 3; i++) c->anc[3 * k + i] = xs[i] - g * n[i] + tt[i] / c->prm.penalty_tangent;
+      } else {
+        memcpy(c->anc + 3 * k, xs, 3 * sizeof(double));
+      }
+    } else if (c->target == TGT_MESH) {
+      int t = mesh_search(c, A, x, xs, c->last_tri[k]);
+      if (t >= 0) {
+        int L[7], rt[3], ra[3], nl = pair_nodes(c, k, t, L, rt, ra);
+        double xl[21], Fs[3], Fm[9];
+        for (int r = 0; r < nl; r++) memcpy(xl + 3 * r, x + 3 * L[r], 3 * sizeof(double));
+        act = pair_eval(c, k, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt,
+                        &slip);
+        memcpy(F, Fs, sizeof F);
+        /* new anchor a = x_c - d_new = xs - g n + t_T / eps_T, in the triangle's (unclamped)
+         * barycentric coordinates */
+        const double *P0 = x + 3 * c->tri[3 * t], *P1 = x + 3 * c->tri[3 * t + 1],
+                     *P2 = x + 3 * c->tri[3 * t + 2];
+        double a[3], e1[3], e2[3], w[3];
+        for (int i = 0; i < 3; i++) {
+          a[i] = xs[i] - g * n[i] + (act ? tt[i] / c->prm.penalty_tangent : 0);
+          e1[i] = P1[i] - P0[i];
+          e2[i] = P2[i] - P0[i];
+          w[i] = a[i] - P0[i];
+        }
+        double a11 = dot3(e1, e1), a12 = dot3(e1, e2), a22 = dot3(e2, e2);
+        double b1 = dot3(e1, w), b2 = dot3(e2, w), det = a11 * a22 - a12 * a12;
+        double u = (a22 * b1 - a12 * b2) / det, vv = (a11 * b2 - a12 * b1) / det;
+        c->anc_f[k] = t;
+        c->anc_b[3 * k] = 1 - u - vv;
+        c->anc_b[3 * k + 1] = u;
+        c->anc_b[3 * k + 2] = vv;
+      } else {
+        c->anc_f[k] = -1;
+      }
+    }
+    c->gap_c[k] = g;
+    c->tn_c[k] = act ? tn : 0;
+    for (int i = 0; i < 3; i++) {
+      c->tt_c[3 * k + i] = act ? tt[i] : 0;
+      c->nrm_c[3 * k + i] = n[i];
+    }
+    if (!act) continue;
+    st.n_active++;
+    st.n_slip += slip;
+    if (-g > st.max_penetration) st.max_penetration = -g;
+    for (int i = 0; i < 3; i++) {
+      st.force[i] += F[i];
+      tsum[i] += c->sarea[k] * tt[i];
+    }
+    st.normal_force += c->sarea[k] * tn;
+  }
+  st.tangent_force = sqrt(dot3(tsum, tsum));
+  c->st = st;
+}
+
+static int contact_candidates(void *ctx, const FemMesh *m, FemPairSink *sink) {
+  FemContact *c = ctx;
+  if (c->target != TGT_MESH || c->prm.search_radius <= 0) return 0;
+  double r = c->prm.search_radius;
+  for (int k = 0; k < c->ns; k++) {
+    const double *xs = m->xyz + 3 * c->snode[k];
+    for (int t = 0; t < c->nt; t++) {
+      const int *v = c->tri + 3 * t;
+      double bc[3];
+      if (closest_on_tri(xs, m->xyz + 3 * v[0], m->xyz + 3 * v[1], m->xyz + 3 * v[2], bc) > r * r)
+        continue;
+      for (int j = 0; j < 3; j++) {
+        if (v[j] == c->snode[k]) continue;
+        fem_pairs_add(sink, c->snode[k], v[j]);
+        fem_pairs_add(sink, v[j], c->snode[k]);
+      }
+    }
+  }
+  return 0;
+}
+
+int fem_contact_attach(FemContact *c, FemSolver *s) {
+  SA_REQUIRE(c->target != TGT_NONE, SA_ERR_INPUT, "contact '%s': no target set", c->slave);
+  SA_REQUIRE(!c->attached, SA_ERR_INPUT, "contact '%s' is already attached", c->slave);
+  SA_REQUIRE(fem_solver_mesh(s) == c->m, SA_ERR_INPUT, "contact '%s': solver has another mesh",
+             c->slave);
+  /* anchors at the reference configuration (the state before the first step) */
+  contact_commit(c, c->m->xyz);
+  FemContributor k = {"contact", contact_candidates, contact_eval, c, contact_commit};
+  SA_CHECK(fem_solver_add_contributor(s, &k));
+  c->s = s;
+  c->attached = 1;
+  return 0;
+}
+
+int fem_contact_set_friction(FemContact *c, double mu) {
+  SA_REQUIRE(mu >= 0 && isfinite(mu), SA_ERR_INPUT, "contact '%s': friction %g must be >= 0",
+             c->slave, mu);
+  c->prm.friction = mu;
+  return 0;
+}
+
+void fem_contact_stats(const FemContact *c, FemContactStats *st) { *st = c->st; }
+
+int fem_contact_slaves(const FemContact *c, const int **node, const double **area,
+                       const double **gap, const double **tn, const double **tt,
+                       const double **normal) {
+  if (node) *node = c->snode;
+  if (area) *area = c->sarea;
+  if (gap) *gap = c->gap_c;
+  if (tn) *tn = c->tn_c;
+  if (tt) *tt = c->tt_c;
+  if (normal) *normal = c->nrm_c;
+  return c->ns;
+}
+
+void fem_contact_destroy(FemContact **cp) {
+  if (!cp || !*cp) return;
+  FemContact *c = *cp;
+  void *p[] = {c->last_tri, c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
+               c->gap_c, c->tn_c, c->tt_c, c->nrm_c};
+  for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
+  free(c);
+  *cp = NULL;
+}

@@ -1,0 +1,99 @@
+/* fem_contact.h - frictional contact as an assembly contributor (fem_contrib.h).
+ *
+ * Node-to-surface penalty contact with Coulomb friction (Wriggers, Computational Contact
+ * Mechanics, 2006, ch. 5 and 6; Laursen 2002, ch. 5). One FemContact pairs the nodes of a
+ * slave surface of the mesh with ONE target:
+ *   - a master surface of the mesh (another body: large sliding, the closest master face is
+ *     searched again at every evaluation, i.e. every Newton iterate and line-search trial;
+ *     tri6 faces are split into their 4 flat sub-triangles);
+ *   - a rigid plane (point, normal pointing into the side where the slave lives);
+ *   - a rigid cylinder wall (axis point, axis direction, radius, axial extent; the slave lives
+ *     inside, e.g. the fill in the barrel).
+ * Per slave node k with reference tributary area A_k (a third of each adjacent (sub-)triangle):
+ *   gap g (signed distance to the target, < 0 = penetration), outward target normal n,
+ *   normal pressure  t_N = eps_N <-g>            [Pa], eps_N the penalty [Pa/m],
+ *   tangential trial t_T = -eps_T P (x - a)      (a: the stick anchor, P = I - n n),
+ *   return map       |t_T| <= mu t_N: stick;  else slip, t_T <- mu t_N t_T / |t_T|,
+ *   force on node k  A_k (t_N n + t_T); the master nodes get minus that, distributed with the
+ *   shape functions of the contact point.
+ * The anchor is history: it is committed when the solver accepts a step (FemContributor
+ * commit hook) and lies on the target (on a mesh master: a convected point, face + barycentric
+ * coordinates, moving with the master). Eval computes every trial from the committed anchors.
+ *
+ * Tangent: exact linearisation for the rigid targets (including the curvature of the
+ * cylinder); for a mesh master the 3x3 blocks of each active pair are central differences of
+ * the pair's force function with its discrete state (face, active, stick/slip) frozen, step
+ * 1e-7 of the face size (truncation ~1e-14, round-off ~1e-9 relative). With friction in slip
+ * the tangent is unsymmetric: the solver's AUTO choice then factorises with UMFPACK.
+ *
+ * Penalty scale: eps_N = alpha E / h (E the softer body's Young's modulus, h its element size)
+ * makes the contact layer as stiff as alpha elements; the penetration under pressure p is
+ * p / eps_N. docs/contact.md gives the measured effect of alpha.
+ *
+ * Failure: a penetration deeper than max_penetration (when > 0) or a non-finite position make
+ * eval return SA_ERR_DOMAIN (> 0, recoverable: the line search backtracks, then the substep is
+ * cut). No abort, no exit. A slave node with no master triangle (empty master) is simply not
+ * in contact. fem_contact_create may leave a partial object in *out on failure: destroy it.
+ *
+ * Lifecycle: fem_contact_create(mesh, slave surface, params) -> one of set_master / set_plane /
+ * set_cylinder -> fem_contact_attach(solver) (before or after setup) -> solves ->
+ * read-back (state at the last accepted step) -> fem_contact_destroy(&c) after the solver. */
+#ifndef FEM_CONTACT_H
+#define FEM_CONTACT_H
+
+#include "fem.h"
+
+typedef struct FemContact FemContact;
+
+typedef struct {
+  double penalty;         /* eps_N [Pa/m] (> 0) */
+  double penalty_tangent; /* eps_T [Pa/m]; 0: = penalty */
+  double friction;        /* Coulomb coefficient mu (>= 0) */
+  double max_penetration; /* [m]; deeper = recoverable failure (0: no limit) */
+  double search_radius;   /* [m] mesh master: candidate pairs of the reference configuration
+                           * within this distance enter the pattern at setup (0: none) */
+} FemContactParams;
+
+FemContactParams fem_contact_params_default(void); /* penalty 0 (must be set), mu 0 */
+
+/* mesh [borrowed]; slave: name of a surface of mesh. */
+int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactParams *prm,
+                       FemContact **out);
+/* Target: master surface of the mesh (a node of the slave never contacts a face it belongs to). */
+int fem_contact_set_master(FemContact *c, const char *master);
+/* Target: rigid plane through point p [in] 3 with unit normal n [in] 3 pointing to the slave's
+ * side. May be called again between solves to move the plane (anchors keep their points). */
+int fem_contact_set_plane(FemContact *c, const double p[3], const double n[3]);
+/* Move the plane to pass through p [in] 3 during the next solve: its point follows the solver's
+ * ramp parameter from the committed position (fem_solver_load_factor), so substeps and
+ * cut-backs move it with the loads (a prescribed piston). set_plane places it at once. */
+int fem_contact_move_plane(FemContact *c, const double p[3]);
+/* Target: rigid cylinder wall, axis through p [in] along a [in] (normalised here), radius R,
+ * active for axial coordinate s = (x - p).a in [smin, smax]; the slave lives inside. */
+int fem_contact_set_cylinder(FemContact *c, const double p[3], const double a[3], double R,
+                             double smin, double smax);
+/* Register the contributor on s [borrowed: c must outlive the solves, s must outlive c's use]. */
+int fem_contact_attach(FemContact *c, FemSolver *s);
+
+/* Change mu between solves (the anchors stay: a node committed on the slip surface is in
+ * strict stick for a larger mu, strict slip for a smaller one). */
+int fem_contact_set_friction(FemContact *c, double mu);
+
+typedef struct {
+  int n_active, n_slip;   /* slave nodes in contact / slipping */
+  double max_penetration; /* [m] */
+  double force[3];        /* total force the target exerts on the slave [N] */
+  double normal_force;    /* sum of A t_N [N] */
+  double tangent_force;   /* |sum of A t_T| [N] */
+} FemContactStats;
+
+/* At the last accepted step (zeros before the first). */
+void fem_contact_stats(const FemContact *c, FemContactStats *st);
+/* Per slave node (committed): nslave [out]; node, area, gap, pressure t_N, traction t_T [3],
+ * normal n [3] [borrowed arrays, any out pointer may be NULL]. */
+int fem_contact_slaves(const FemContact *c, const int **node, const double **area,
+                       const double **gap, const double **tn, const double **tt,
+                       const double **normal);
+void fem_contact_destroy(FemContact **c);
+
+#endif

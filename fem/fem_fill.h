@@ -1,0 +1,39 @@
+/* fem_fill.h - the Mohr-Coulomb granular fill as case keys ([fill], issue 13) and the
+ * verification scenes built on it:
+ *   [triaxial]  drained triaxial compression of a cube (fem_triaxial.c, cases/mc_triaxial.ini)
+ *   [footing]   rigid strip footing on a weightless layer (fem_footing.c, cases/mc_footing.ini)
+ * The [fill] table is shared (listed once in `softact keys`); the actuator's continuum scene can
+ * read the same section. The law is "mohr_coulomb" from the registry (fem_law.h,
+ * fem_mohr_coulomb.h); docs/mohr_coulomb.md has the model and the measured results. */
+#ifndef FEM_FILL_H
+#define FEM_FILL_H
+
+#include "fem.h"
+#include "sa_module.h"
+#include "sa_params.h"
+
+typedef struct {
+  double friction_angle; /* [deg] */
+  double cohesion;       /* [Pa] */
+  double dilation_angle; /* [deg] */
+  double young;          /* [Pa] */
+  double poisson;        /* [-] */
+  double density;        /* [kg/m^3] */
+} FemFillParams;
+
+extern const SaParamTable fem_fill_table; /* [fill] */
+
+/* Load [fill] of case c [in] into p [out] with the cross-key checks (dilation_angle <=
+ * friction_angle; cohesion > 0 when friction_angle = 0): SA_ERR_INPUT naming file, keys and
+ * the allowed range. */
+int fem_fill_load(const SaCase *c, FemFillParams *p);
+/* The region material of the fill: law mohr_coulomb with p [in]; mat [out]. */
+int fem_fill_material(const FemFillParams *p, FemMaterial *mat);
+/* Mean of history value k over the used quadrature points of every element of s: out [out]
+ * nelem values (e.g. k = 6: equivalent plastic strain). */
+void fem_fill_history_mean(const FemSolver *s, int k, double *out);
+
+extern const SaModule fem_triaxial_module; /* trigger [triaxial] */
+extern const SaModule fem_footing_module;  /* trigger [footing] */
+
+#endif
