@@ -9,9 +9,9 @@
  * solver's cut-backs (a failed substep is cut and retried, never accepted). Weightless (no
  * gravity), no initial stress. W and D default to multiples of the extent of Prandtl's
  * mechanism. Two structured blocks of Kuhn-split hexahedra (tet10 by default), graded toward
- * the footing edge (x = B/2, z = 0) with a power map of exponent `grading`: `cells` cells
- * across the half footing, and beside it and over the depth as many as make the cells at the
- * edge match.
+ * the footing edge (x = B/2, z = 0): `cells` cells across the half footing with a power map
+ * of exponent `grading`, cells sqrt(L / (B/2)) beside it and over the depth (L their extent)
+ * with the power that makes the cells at the edge match; straight-sided elements.
  * Footing pressure p = -(sum of the support forces in z on the footing nodes) / (t B/2); the
  * limit pressure is the largest p of the ramp, reported with how much p still rose over the
  * last 10 % of the settlement (the plateau check).
@@ -60,10 +60,11 @@ static const SaParam foot_params[] = {
     {"steps", SA_PARAM_INT, P(steps), "-", "40", 2, 10000, 0, NULL,
      "output steps of the settlement ramp (the solver substeps itself when needed)"},
     {"cells", SA_PARAM_INT, P(cells), "-", "6", 1, 200, 0, NULL,
-     "mesh refinement: cells across the half footing (the rest of the width and the depth get "
-     "as many as make their cells at the footing edge match)"},
+     "mesh refinement: cells across the half footing (cells sqrt(L / (B/2)) over a length L "
+     "beside it and over the depth, graded so that the cells at the footing edge match)"},
     {"grading", SA_PARAM_REAL, P(grading), "-", "1.5", 1, 4, 0, NULL,
-     "power of the mesh grading toward the footing edge (1 = uniform)"},
+     "power of the mesh grading under the footing toward its edge (1 = uniform); the smallest "
+     "cell is (B/2) cells^-grading"},
     {"order", SA_PARAM_INT, P(order), "-", "2", 1, 2, 0, NULL,
      "element order: 2 = tet10 (use this), 1 = tet4 (locks under plastic flow)"},
     {"rough", SA_PARAM_BOOL, P(rough), "-", "0", 0, 0, 0, NULL,
@@ -134,19 +135,20 @@ static void foot_destroy(void **scene) {
 }
 
 /* Block maps. xi0 -> x, xi1 -> y (one cell), xi2 -> z. Power grading toward the footing edge:
- * under the footing x = (B/2)(1 - (1 - xi)^g); beside it x = B/2 + (W - B/2) xi^g;
- * z = -D (1 - xi)^g. */
+ * under the footing x = (B/2)(1 - (1 - xi)^g); beside it x = B/2 + (W - B/2) xi^gb;
+ * z = -D (1 - xi)^gz, with gb, gz such that the first cell beside / below the edge equals the
+ * last one under the footing, (B/2)(1/cells)^g. */
 typedef struct {
-  double b2, W, D, t, g;
+  double b2, W, D, t, g, gb, gz;
   int side; /* 0: under the footing, 1: beside it */
 } FootMap;
 
 static void map_foot(const double xi[3], const void *ctx, double X[3]) {
   const FootMap *m = ctx;
   X[0] = m->side == 0 ? m->b2 * (1 - pow(1 - xi[0], m->g))
-                      : m->b2 + (m->W - m->b2) * pow(xi[0], m->g);
+                      : m->b2 + (m->W - m->b2) * pow(xi[0], m->gb);
   X[1] = m->t * xi[1];
-  X[2] = -m->D * pow(1 - xi[2], m->g);
+  X[2] = -m->D * pow(1 - xi[2], m->gz);
 }
 
 typedef struct {
@@ -242,18 +244,32 @@ static int foot_run(void *scene, SaRun *run) {
   double dd = F->domain_depth > 0 ? F->domain_depth : 0.5 + 0.6 * Lm;
   int n = F->cells;
   double b2 = 0.5 * F->width, W = dw * F->width, D = dd * F->width, g = F->grading;
-  /* thickness: the smallest in-plane cell (at the footing edge) */
-  double hx = b2 * (1 - pow(1 - 1.0 / n, g));
-  /* cells beside the footing and over the depth whose first (graded) cell matches hx */
-  int nb = (int)ceil(pow((W - b2) / hx, 1 / g)), nz = (int)ceil(pow(D / hx, 1 / g));
+  /* the smallest cell, at the footing edge (also the slab thickness) */
+  double hx = b2 * pow(1.0 / n, g);
+  /* beside the footing and over the depth: n sqrt(L / (B/2)) cells, graded with the power that
+   * makes the first cell at the edge equal hx */
+  int nb = (int)ceil(n * sqrt((W - b2) / b2)), nz = (int)ceil(n * sqrt(D / b2));
   if (nb < 2) nb = 2;
   if (nz < 2) nz = 2;
-  FootMap ma = {b2, W, D, hx, g, 0}, mb = ma;
+  double gb = fmax(1.0, log((W - b2) / hx) / log(nb)), gz = fmax(1.0, log(D / hx) / log(nz));
+  FootMap ma = {b2, W, D, hx, g, gb, gz, 0}, mb = ma;
   mb.side = 1;
   FemMeshBlock blk[2] = {
       {{n, 1, nz}, map_foot, &ma, {"sym", NULL, "front", "back", "base", "footing"}},
       {{nb, 1, nz}, map_foot, &mb, {NULL, "far", "front", "back", "base", "free"}}};
   SA_CHECK(fem_mesh_blocks(2, blk, F->order, 1e-9 * F->width, &t.m));
+  /* straight-sided tet10: the domain is polygonal, and mid-nodes placed by the graded map would
+   * curve the elements (inverted ones for strong grading) and need the 8-point rule */
+  if (t.m->nen == 10) {
+    static const int ed[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};
+    for (int e = 0; e < t.m->nelem; e++) {
+      const int *c = t.m->conn + (size_t)e * 10;
+      for (int q = 0; q < 6; q++)
+        for (int i = 0; i < 3; i++)
+          t.m->xyz[3 * c[4 + q] + i] =
+              0.5 * (t.m->xyz[3 * c[ed[q][0]] + i] + t.m->xyz[3 * c[ed[q][1]] + i]);
+    }
+  }
   t.area = hx * b2;
   FemMaterial mat;
   int rc = fem_fill_material(&sc->fill, &mat);
