@@ -353,6 +353,17 @@ static int foot_run(void *scene, SaRun *run) {
     double c = sc->fill.cohesion, Nc = t.p_max / c;
     int k90 = (int)floor(0.9 * t.step);
     double rise = t.p_hist[k90] > 0 ? t.p_last / t.p_hist[k90] - 1 : INFINITY;
+    /* the plastic branch: least-squares line through the last 20 % of the steps; its slope and
+     * its intercept at zero settlement (a diagnostic, docs/mohr_coulomb.md) */
+    int k80 = (int)floor(0.8 * t.step);
+    if (k80 < 1) k80 = 1;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0, nk = 0;
+    for (int k = k80; k <= t.step; k++) {
+      double x = F->settlement * k / F->steps, y = t.p_hist[k] / c;
+      sx += x, sy += y, sxx += x * x, sxy += x * y, nk++;
+    }
+    double den = nk * sxx - sx * sx, slope = den > 0 ? (nk * sxy - sx * sy) / den : NAN;
+    double icpt = (sy - slope * sx) / nk;
     SaFile *f = NULL;
     if (sa_run_path(run, "summary.ini", path) == 0 && sa_file_open(path, &f) == 0) {
       FILE *fp = sa_file_stream(f);
@@ -363,8 +374,11 @@ static int foot_run(void *scene, SaRun *run) {
               "bearing_capacity_factor = %.9g ; limit_pressure / cohesion\n"
               "prandtl_N_c = %.9g ; (N_q - 1) cot phi, N_q = e^(pi tan phi) tan^2(45 + phi/2)\n"
               "bearing_capacity_rel_error = %.4e\n"
-              "last_tenth_rise = %.4e ; p(end) / p(90 %% of the settlement) - 1 (plateau check)\n",
-              t.p_max, Nc, t.nc, Nc / t.nc - 1, rise);
+              "last_tenth_rise = %.4e ; p(end) / p(90 %% of the settlement) - 1 (plateau check)\n"
+              "plastic_branch_slope = %.6g ; d(p/c) / d(settlement/B) over the last 20 %% of the "
+              "steps\nplastic_branch_intercept = %.9g ; that line at zero settlement (diagnostic: "
+              "meaningful only when the knee of the curve lies before the last 20 %%)\n",
+              t.p_max, Nc, t.nc, Nc / t.nc - 1, rise, slope, icpt);
       fprintf(fp, "domain_width = %.6g ; B\ndomain_depth = %.6g ; B\n", dw, dd);
       fprintf(fp, "cells = %d\ncells_beside = %d\ncells_depth = %d\nedge_cell = %.6g ; B\n"
               "nodes = %d\nelements = %d\nelement = %s\nsteps = %d\nsubsteps_cut = %d\nnewton_iterations = %d\n"
