@@ -36,6 +36,7 @@ static const SaModule *const modules[] = {
 #ifdef SOFTACT_HAVE_FEM
     &fem_module,
     &fem_triaxial_module,
+    &fem_footing_module,
 #endif
 #ifdef SOFTACT_HAVE_DEM
     &dem_module,

@@ -5,8 +5,10 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "fem_law.h"
 #include "sa_error.h"
 #include "sa_log.h"
 #include "sa_output.h"
@@ -55,7 +57,9 @@ static const SaParam mat_params[] = {
      "reinforcement ring density"},
     {"regions", SA_PARAM_STRING, P(regions), "-",
      "silicone:silicone, strain_limit:limit, reinforcement:ring", 0, 0, 0, NULL,
-     "material set of each mesh region as region:set, set = silicone, limit or ring"},
+     "material of each mesh region as region:set, set = silicone, limit, ring, or any "
+     "registered law with its parameters, e.g. fill:mohr_coulomb(young = 20e6 poisson = 0.3 "
+     "friction_angle = 28 cohesion = 100 dilation_angle = 3 rho = 1550)"},
 };
 #undef P
 #define P(f) offsetof(FemSolverCaseParams, f)
@@ -88,18 +92,90 @@ const SaParamTable fem_actuator_material_table = {"material", "fem",
 const SaParamTable fem_actuator_solver_table = {"solver", "fem", "FEM Newton and linear solver",
                                                 solver_params, SA_NPARAMS(solver_params)};
 
-/* The set the regions map gives region `name`: 0 silicone, 1 limit, 2 ring, -1 none, -2 bad
- * syntax or set (bad [out] names the offending entry). */
-static int region_set(const char *map, const char *name, char *bad, size_t nbad) {
+/* A region given a registered law directly: "law(param = value ...)" with its parameters
+ * separated by blanks, ';' or ',' and its density as rho. */
+typedef struct {
+  char law[64];
+  int n;
+  char names[FEM_LAW_MAX_PARAMS][64];
+  const char *pn[FEM_LAW_MAX_PARAMS];
+  double v[FEM_LAW_MAX_PARAMS];
+  double rho;
+} LawSpec;
+
+static int parse_law(char *txt, LawSpec *ls, char *bad, size_t nbad) {
+  memset(ls, 0, sizeof *ls);
+  ls->rho = NAN;
+  char *open = strchr(txt, '('), *close = strrchr(txt, ')');
+  char *e = open;
+  while (e > txt && (e[-1] == ' ' || e[-1] == '\t')) e--;
+  if (!open || !close || close < open || close[1] != '\0' || e == txt || e - txt >= 64) {
+    snprintf(bad, nbad, "'%s' is not law(param = value ...)", txt);
+    return -1;
+  }
+  memcpy(ls->law, txt, (size_t)(e - txt));
+  *close = '\0';
+  for (char *save = NULL, *tok = strtok_r(open + 1, " \t;,", &save); tok;
+       tok = strtok_r(NULL, " \t;,", &save)) {
+    char *eq = strchr(tok, '=');
+    /* "name = value" with blanks: rejoin the pieces */
+    char item[128];
+    snprintf(item, sizeof item, "%s", tok);
+    while (!eq || eq[1] == '\0') {
+      char *nx = strtok_r(NULL, " \t;,", &save);
+      if (!nx) break;
+      size_t l = strlen(item);
+      snprintf(item + l, sizeof item - l, "%s", nx);
+      eq = strchr(item, '=');
+      if (eq && eq[1]) break;
+    }
+    eq = strchr(item, '=');
+    char *end = NULL;
+    double v = eq ? strtod(eq + 1, &end) : NAN;
+    if (!eq || eq == item || !end || *end || !isfinite(v)) {
+      snprintf(bad, nbad, "law %s: '%s' is not param = number", ls->law, item);
+      return -1;
+    }
+    *eq = '\0';
+    if (!strcmp(item, "rho")) {
+      ls->rho = v;
+      continue;
+    }
+    if (ls->n == FEM_LAW_MAX_PARAMS) {
+      snprintf(bad, nbad, "law %s: more than %d parameters", ls->law, FEM_LAW_MAX_PARAMS);
+      return -1;
+    }
+    snprintf(ls->names[ls->n], 64, "%s", item);
+    ls->pn[ls->n] = ls->names[ls->n];
+    ls->v[ls->n++] = v;
+  }
+  if (!isfinite(ls->rho) || ls->rho < 0) {
+    snprintf(bad, nbad, "law %s: needs its density as rho = value >= 0 [kg/m^3]", ls->law);
+    return -1;
+  }
+  return 0;
+}
+
+/* The set the regions map gives region `name`: 0 silicone, 1 limit, 2 ring, 3 a law given
+ * directly (ls [out] filled), -1 none, -2 bad syntax or set (bad [out] names the offending
+ * entry). Entries are split at commas outside parentheses. */
+static int region_set(const char *map, const char *name, char *bad, size_t nbad, LawSpec *ls) {
   const char *sets[] = {"silicone", "limit", "ring"};
   char buf[SA_STR_MAX];
   snprintf(buf, sizeof buf, "%s", map);
-  int found = -1;
-  for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+  int found = -1, depth = 0;
+  char *tok = buf;
+  for (char *q = buf;; q++) {
+    if (*q == '(') depth++;
+    if (*q == ')') depth--;
+    if (*q && (*q != ',' || depth > 0)) continue;
+    int last = *q == '\0';
+    *q = '\0';
     while (*tok == ' ' || *tok == '\t') tok++;
     char *colon = strchr(tok, ':');
     char *end = tok + strlen(tok);
     while (end > tok && (end[-1] == ' ' || end[-1] == '\t')) *--end = '\0';
+    if (!*tok && last) break;
     if (!colon || colon == tok) {
       snprintf(bad, nbad, "'%s' is not region:set", tok);
       return -2;
@@ -112,13 +188,75 @@ static int region_set(const char *map, const char *name, char *bad, size_t nbad)
     int k = -1;
     for (int i = 0; i < 3; i++)
       if (!strcmp(set, sets[i])) k = i;
+    LawSpec tmp;
+    if (k < 0 && strchr(set, '(')) {
+      if (parse_law(set, &tmp, bad, nbad)) return -2;
+      if (!fem_law_find(tmp.law)) {
+        char list[512];
+        fem_law_list(list, sizeof list);
+        snprintf(bad, nbad, "region '%.60s': unknown law '%.60s' (registered: %.300s)", tok, tmp.law,
+               list);
+        return -2;
+      }
+      k = 3;
+    }
     if (k < 0) {
-      snprintf(bad, nbad, "set '%s' of region '%s' is not silicone, limit or ring", set, tok);
+      snprintf(bad, nbad, "set '%s' of region '%s' is not silicone, limit, ring or "
+               "law(param = value ... rho = value)", set, tok);
       return -2;
     }
-    if (name && !strcmp(tok, name)) found = k;
+    if (name && !strcmp(tok, name)) {
+      found = k;
+      if (k == 3 && ls) {
+        *ls = tmp;
+        for (int i = 0; i < ls->n; i++) ls->pn[i] = ls->names[i]; /* into the copy */
+      }
+    }
+    if (last) break;
+    tok = q + 1;
+  }
+  if (depth != 0) {
+    snprintf(bad, nbad, "unbalanced parentheses");
+    return -2;
   }
   return found;
+}
+
+/* Every law entry of the map builds a valid material (unknown or missing parameters, values out
+ * of range): SA_ERR_INPUT naming the entry. */
+static int check_law_entries(const char *map, char *bad, size_t nbad) {
+  char buf[SA_STR_MAX], names[64][64];
+  snprintf(buf, sizeof buf, "%s", map);
+  int nn = 0, depth = 0;
+  for (char *q = buf, *tok = buf;; q++) { /* region names */
+    if (*q == '(') depth++;
+    if (*q == ')') depth--;
+    if (*q && (*q != ',' || depth > 0)) continue;
+    int last = *q == '\0';
+    *q = '\0';
+    while (*tok == ' ') tok++;
+    char *colon = strchr(tok, ':');
+    if (colon && nn < 64) {
+      char *r = colon;
+      while (r > tok && r[-1] == ' ') r--;
+      snprintf(names[nn++], 64, "%.*s", (int)(r - tok), tok);
+    }
+    if (last) break;
+    tok = q + 1;
+  }
+  for (int i = 0; i < nn; i++) {
+    LawSpec ls;
+    if (region_set(map, names[i], bad, nbad, &ls) != 3) continue;
+    FemMaterial m;
+    int rc = fem_material_from_law(ls.law, ls.n, ls.pn, ls.v, ls.rho, &m);
+    if (!rc) rc = fem_material_check(&m);
+    if (rc) {
+      snprintf(bad, nbad, "region '%.60s': %.400s", names[i], sa_error_message());
+      sa_error_clear();
+      return -2;
+    }
+  }
+  return 0;
 }
 
 int fem_actuator_load(const SaCase *c, FemActuatorCase *a) {
@@ -129,8 +267,11 @@ int fem_actuator_load(const SaCase *c, FemActuatorCase *a) {
   SA_REQUIRE(strcmp(a->mat.model, "mooney_rivlin") || a->mat.c01 > 0, SA_ERR_INPUT,
              "%s: [material] c01 must be > 0 for model = mooney_rivlin", sa_case_path(c));
   char bad[SA_STR_MAX];
-  SA_REQUIRE(region_set(a->mat.regions, NULL, bad, sizeof bad) != -2, SA_ERR_INPUT,
-             "%s: [material] regions: %s", sa_case_path(c), bad);
+  char w[SA_STR_MAX];
+  SA_REQUIRE(region_set(a->mat.regions, NULL, bad, sizeof bad, NULL) != -2 &&
+                 check_law_entries(a->mat.regions, bad, sizeof bad) == 0,
+             SA_ERR_INPUT, "%s: [material] regions (%s): %s", sa_case_path(c),
+             sa_case_origin(c, "material", "regions", w), bad);
   return 0;
 }
 
@@ -157,11 +298,14 @@ int fem_actuator_materials(const FemActuatorCase *a, const FemMesh *m, FemMateri
   char bad[SA_STR_MAX];
   for (int r = 0; r < m->nregions; r++) {
     const char *name = m->region_names[r];
-    int set = region_set(p->regions, name, bad, sizeof bad);
+    LawSpec ls;
+    int set = region_set(p->regions, name, bad, sizeof bad, &ls);
     SA_REQUIRE(set != -2, SA_ERR_INPUT, "[material] regions: %s", bad);
     SA_REQUIRE(set >= 0, SA_ERR_INPUT, "mesh region '%s' has no material: [material] regions = "
                "%s names no set for it", name, p->regions);
-    if (set == 0) { /* the silicone law from the registry; kappa from kappa_ratio and mu0 */
+    if (set == 3) { /* a registered law with its parameters given in the map */
+      SA_CHECK(fem_material_from_law(ls.law, ls.n, ls.pn, ls.v, ls.rho, &mats[r]));
+    } else if (set == 0) { /* the silicone law from the registry; kappa from kappa_ratio and mu0 */
       const char *nm[4] = {"c10", NULL, NULL, "kappa"};
       double v[4] = {p->c10, 0, 0, 1.0};
       int n = 2;
