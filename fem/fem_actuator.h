@@ -26,7 +26,7 @@ typedef struct {
 typedef struct {
   double rtol, dl_min, reuse_rate;
   int max_iter, threads;
-  char linear_solver[SA_STR_MAX], predictor[SA_STR_MAX];
+  char linear_solver[SA_STR_MAX], predictor[SA_STR_MAX], merit[SA_STR_MAX], indefinite[SA_STR_MAX];
 } FemSolverCaseParams;
 
 /* The three sections every actuator scene reads. */

@@ -23,7 +23,8 @@ FemSolverParams fem_solver_params_default(void) {
       .dl_init = 1.0, .dl_min = 1e-4, .dl_max = 1.0, .easy_iter = 5, .grow = 1.5, .cut = 0.5,
       .threads = 2, .linsolver = FEM_LINSOLVER_AUTO, .sym_tol = 1e-9, .hht_alpha = -0.05,
       .mass_damping = 0.0, .ls_growth = 1e3, .max_stall = 6,
-      .predictor = FEM_PREDICT_NEW_LOAD, .reuse_rate = 0.0};
+      .predictor = FEM_PREDICT_NEW_LOAD, .reuse_rate = 0.0,
+      .merit = FEM_MERIT_LAZY, .armijo = 1e-4, .indefinite = FEM_INDEFINITE_LU};
   return p;
 }
 
@@ -35,8 +36,8 @@ int fem_solver_create(const FemMesh *mesh, const FemMaterial *mats, const FemSol
   SA_REQUIRE(mesh && mesh->nnodes > 0 && mesh->nelem > 0, SA_ERR_INPUT, "empty mesh");
   SA_REQUIRE(mats, SA_ERR_INPUT, "no materials");
   if (prm) {
-    SA_REQUIRE(prm->predictor >= FEM_PREDICT_NEW_LOAD && prm->predictor <= FEM_PREDICT_REUSE,
-               SA_ERR_INPUT, "predictor %d is not one of 0 (new_load), 1 (equilibrium), 2 (reuse)",
+    SA_REQUIRE(prm->predictor >= FEM_PREDICT_NEW_LOAD && prm->predictor <= FEM_PREDICT_EXTRAPOLATE,
+               SA_ERR_INPUT, "predictor %d is not one of 0 (new_load), 1 (equilibrium), 2 (reuse), 3 (extrapolate)",
                (int)prm->predictor);
     SA_REQUIRE(prm->reuse_rate >= 0 && prm->reuse_rate < 1, SA_ERR_INPUT,
                "reuse_rate %g not in [0, 1)", prm->reuse_rate);
@@ -127,7 +128,7 @@ int fem_solver_setup(FemSolver *s) {
   SA_CHECK(fem_asm_setup(s));
   SA_CHECK(fem_newton_alloc(s));
   int ne = m->nelem, nd = s->ndof, nf = s->dm.nfree;
-  double **vecs[] = {&s->u, &s->x, &s->u_last, &s->u_start, &s->ct.up_c, &s->ct.up_t,
+  double **vecs[] = {&s->u, &s->x, &s->u_last, &s->u_prev, &s->u_start, &s->ct.up_c, &s->ct.up_t,
                      &s->dy.v, &s->dy.acc, &s->dy.v_last, &s->dy.a_last, &s->dy.res_n};
   for (size_t i = 0; i < sizeof vecs / sizeof *vecs; i++) SA_CALLOC(*vecs[i], nd);
   memcpy(s->x, m->xyz, (size_t)nd * sizeof *s->x);
@@ -247,6 +248,7 @@ void fem_solver_destroy(FemSolver **ps) {
   free(s->u);
   free(s->x);
   free(s->u_last);
+  free(s->u_prev);
   free(s->u_start);
   free(s);
   *ps = NULL;
