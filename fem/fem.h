@@ -250,6 +250,11 @@ void fem_solver_stats(const FemSolver *s, FemSolverStats *st);
  * rel_err [out] = |K v - (R(u + h v) - R(u - h v)) / 2h| / |K v| for a fixed pseudo-random v
  * over the free dofs. Debugging and tests; allocates. */
 int fem_solver_check_tangent(FemSolver *s, double h, double *rel_err);
+/* Finite-difference check of the energy merit (FEM_MERIT_ENERGY) at the current positions
+ * and pressure p [in]: rel_err [out] = |R.v - (Pi(u + h v) - Pi(u - h v)) / 2h| / |R.v|,
+ * Pi = W(u) - p V(u) - f_dead.u, R the residual at pressure p, v a fixed pseudo-random
+ * free-dof vector. Small only where p V is the pressure's potential (rim fixed). */
+int fem_solver_check_potential(FemSolver *s, double p, double h, double *rel_err);
 const FemMesh *fem_solver_mesh(const FemSolver *s);
 void fem_solver_destroy(FemSolver **s);
 

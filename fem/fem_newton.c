@@ -187,6 +187,19 @@ static double potential(const FemSolver *s, double *pi_scale) {
   return s->as.energy - s->p * s->V - wd;
 }
 
+/* The energy merit needs p V(u) to be the pressure's potential on the free dofs: dV/du = q
+ * there (true when the rim of the pressure surface is fixed or lies on planes through the
+ * origin: docs/fem.md). Checked at the first assembly of every substep, O(ndof). */
+static int potential_consistent(const FemSolver *s) {
+  double dmax = 0.0, qmax = 0.0;
+  for (int d = 0; d < s->ndof; d++) {
+    if (s->dm.eq[d] < 0) continue;
+    dmax = fmax(dmax, fabs(s->as.gv[d] - s->as.q[d]));
+    qmax = fmax(qmax, fabs(s->as.q[d]));
+  }
+  return dmax <= 1e-8 * qmax;
+}
+
 /* Assembly of the trial state (residual only when the plan is to reuse factors), the domain
  * hook, residual and merit. Returns the assembly code (0, SA_ERR_INVERTED, SA_ERR_DOMAIN, or
  * < 0 fatal). */
@@ -362,6 +375,11 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
       return sa_error_push(rc, __func__, __FILE__, __LINE__);
     }
     int bad = rc != 0 || !isfinite(rnorm);
+    if (t.it == 0 && t.emerit && !bad && !potential_consistent(s)) {
+      t.emerit = 0;
+      sa_log(SA_LOG_DEBUG, "fem", "energy merit off: dV/du differs from the pressure load q "
+             "(the pressure surface's rim is neither fixed nor on planes through the origin)");
+    }
     /* Backtrack on domain errors / non-finite residuals, and on a residual blow-up by more
      * than ls_growth. Not on any increase: for a nearly incompressible solid the full Newton
      * step changes the volume to second order and kappa times that makes the residual norm

@@ -301,3 +301,38 @@ int fem_solver_check_tangent(FemSolver *s, double h, double *rel_err) {
   SA_REQUIRE(rc == 0, SA_ERR_INVERTED, "inverted element during the tangent check");
   return 0;
 }
+
+int fem_solver_check_potential(FemSolver *s, double p, double h, double *rel_err) {
+  SA_REQUIRE(s->setup_done, SA_ERR_INPUT, "check_potential before setup");
+  int nf = s->dm.nfree, nd = s->ndof;
+  double *v, *xp;
+  SA_CALLOC(v, nf);
+  SA_CALLOC(xp, nd);
+  unsigned long seed = 4242;
+  for (int k = 0; k < nf; k++) {
+    seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+    v[k] = (double)(seed >> 11) / 9007199254740992.0 - 0.5;
+  }
+  AsmBuf *bf = &s->as.rb;
+  double Rv = 0.0, pi[2] = {0, 0};
+  int rc = fem_asm_into(s, bf, s->x, p, 0);
+  for (int d = 0; d < nd && rc == 0; d++)
+    if (s->dm.eq[d] >= 0)
+      Rv += (bf->fint[d] - s->as.fdead[d] - p * bf->q[d]) * v[s->dm.eq[d]];
+  for (int i = 0; i < 2 && rc == 0; i++) {
+    double sgn = i == 0 ? 1.0 : -1.0, wd = 0.0;
+    for (int d = 0; d < nd; d++) {
+      xp[d] = s->x[d] + (s->dm.eq[d] >= 0 ? sgn * h * v[s->dm.eq[d]] : 0.0);
+      wd += s->as.fdead[d] * (xp[d] - s->m->xyz[d]);
+    }
+    rc = fem_asm_into(s, bf, xp, p, 0);
+    pi[i] = bf->energy - p * bf->V - wd;
+  }
+  if (rc) sa_error_clear();
+  *rel_err = fabs(Rv - (pi[0] - pi[1]) / (2 * h)) / fmax(fabs(Rv), 1e-300);
+  free(v);
+  free(xp);
+  SA_REQUIRE(rc == 0, SA_ERR_INVERTED, "inverted element during the potential check");
+  SA_REQUIRE(s->as.ncontrib == 0, SA_ERR_INPUT, "contributors have no potential here");
+  return 0;
+}
