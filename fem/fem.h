@@ -99,6 +99,10 @@ typedef struct {
   FemMerit merit;    /* line-search merit */
   double armijo;     /* energy merit: sufficient decrease Pi(a) <= Pi(0) + armijo a Pi'(0) */
   FemIndefinite indefinite; /* not positive definite tangent: LU or modified Cholesky */
+  int krylov_max;    /* > 0: a Newton direction is first sought by preconditioned CG on the
+                      * current tangent with the last Cholesky factors as preconditioner, up
+                      * to krylov_max iterations, before refactorising (0 = off) */
+  double krylov_rtol; /* PCG stop: |K du + R| <= krylov_rtol |R| (inexact Newton) */
 } FemSolverParams;
 
 FemSolverParams fem_solver_params_default(void);
@@ -151,6 +155,9 @@ typedef struct {
   int n_modified;           /* factorisations of a modified (load stiffness reduced) tangent */
   int n_not_pd;             /* CHOLMOD attempts that found a tangent not positive definite */
   int n_ls_energy;          /* backtracks on the energy merit */
+  int n_krylov;             /* Newton directions from PCG on the last factors */
+  int n_krylov_it;          /* PCG iterations (each a product with K and a factor solve) */
+  int n_krylov_fail;        /* PCG attempts abandoned (limit, negative curvature) */
 } FemSolverStats;
 
 /* mesh [borrowed, must outlive the solver]; mats [in] one per mesh region (copied). */

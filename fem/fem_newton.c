@@ -103,8 +103,8 @@ static int factorize_modified(FemSolver *s, double p_asm) {
 }
 
 /* p_asm: the pressure whose load stiffness the assembled tangent holds. */
-static int factorize(FemSolver *s, const StepKind *sk, double p_asm) {
-  if (sk->dynamic) fem_dyn_effective_tangent(s, sk);
+static int factorize(FemSolver *s, const StepKind *sk, double p_asm, int eff_done) {
+  if (sk->dynamic && !eff_done) fem_dyn_effective_tangent(s, sk);
   /* CHOLMOD at every iteration: a tangent that is indefinite at the first iteration of a
    * substep (the load increment applied to the converged state) is usually positive definite
    * again near the new equilibrium, and a failed CHOLMOD attempt costs at most one Cholesky
@@ -167,9 +167,49 @@ static int linsolve(FemSolver *s, const double *b, double *x) {
   return rc;
 }
 
+/* Preconditioned CG on K x = b (K: the tangent values in val, full pattern; preconditioner:
+ * the factors held by lin, those of an earlier iterate). Returns 0 when |K x - b| <= rtol |b|
+ * within maxit iterations, 1 when not (limit, or p.Kp <= 0: the tangent is not positive
+ * definite along p and CG's minimisation breaks down), < 0 on a solve error. */
+static int pcg(FemSolver *s, const double *b, double *x, int maxit, double rtol, int *its) {
+  const int n = s->dm.nfree;
+  const int *cp = s->dm.colptr, *ri = s->dm.rowind;
+  const double *K = s->as.val;
+  double *r = s->nw.kr, *z = s->nw.kz, *p = s->nw.kp, *q = s->nw.kq;
+  memset(x, 0, (size_t)n * sizeof *x);
+  memcpy(r, b, (size_t)n * sizeof *r);
+  double bn = fem_nrm2(b, n);
+  *its = 0;
+  if (bn == 0.0) return 0;
+  SA_CHECK(linsolve(s, r, z));
+  memcpy(p, z, (size_t)n * sizeof *p);
+  double rz = fem_dot(r, z, n);
+  for (int it = 1; it <= maxit; it++) {
+    *its = it;
+    memset(q, 0, (size_t)n * sizeof *q);
+    for (int j = 0; j < n; j++) {
+      double pj = p[j];
+      for (int k = cp[j]; k < cp[j + 1]; k++) q[ri[k]] += K[k] * pj;
+    }
+    double pq = fem_dot(p, q, n);
+    if (!(pq > 0.0)) return 1;
+    double a = rz / pq;
+    for (int i = 0; i < n; i++) {
+      x[i] += a * p[i];
+      r[i] -= a * q[i];
+    }
+    if (fem_nrm2(r, n) <= rtol * bn) return 0;
+    SA_CHECK(linsolve(s, r, z));
+    double rz1 = fem_dot(r, z, n), be = rz1 / rz;
+    rz = rz1;
+    for (int i = 0; i < n; i++) p[i] = z[i] + be * p[i];
+  }
+  return 1;
+}
+
 /* Iteration state of one substep. */
 typedef struct {
-  int vol, it, ls, stall, nfresh, have_fact, fresh_last, reuse;
+  int vol, it, ls, stall, nfresh, have_fact, fresh_last, reuse, krylov_last;
   double r_prev, r_first, merit_prev, step_len, dp, gb, du_norm, qnorm, p_pred;
   int emerit;       /* the energy merit applies to this substep */
   double p_asm;     /* pressure of the load stiffness in the assembled tangent */
@@ -272,10 +312,32 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
                       s->as.n_inverted, t->it);
     }
   }
-  rc = use_old ? 0 : factorize(s, sk, t->p_asm);
-  if (!use_old) t->nfresh++;
-  else s->st.n_reuse++;
-  t->fresh_last = !use_old;
+  /* Krylov on the last Cholesky factors (krylov_max > 0): the tangent of this iterate is
+   * assembled, the factors are of an earlier one; PCG to krylov_rtol, else refactorise. */
+  int krylov = 0, eff_done = 0;
+  if (!use_old && s->prm.krylov_max > 0 && s->nw.have_factors && s->nw.last_sym && !t->vol &&
+      t->it > 0) {
+    if (sk->dynamic) fem_dyn_effective_tangent(s, sk);
+    eff_done = 1;
+    for (int k = 0; k < nf; k++) s->nw.rhs[k] = -s->nw.R[k];
+    int its = 0;
+    double t0 = sa_time_now();
+    int prc = pcg(s, s->nw.rhs, s->nw.da, s->prm.krylov_max, s->prm.krylov_rtol, &its);
+    sa_timing_add("fem krylov", sa_time_now() - t0);
+    if (prc < 0) return sa_error_push(prc, __func__, __FILE__, __LINE__);
+    s->st.n_krylov_it += its;
+    if (prc == 0) {
+      krylov = 1;
+      s->st.n_krylov++;
+    } else {
+      s->st.n_krylov_fail++;
+    }
+  }
+  rc = use_old || krylov ? 0 : factorize(s, sk, t->p_asm, eff_done);
+  if (!use_old && !krylov) t->nfresh++;
+  else if (use_old) s->st.n_reuse++;
+  t->fresh_last = !use_old && !krylov;
+  t->krylov_last = krylov;
   t->have_fact = rc == 0;
   if (rc) {
     *why = FEM_DIVERGED_LINEAR_SOLVE;
@@ -286,7 +348,7 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
   for (int k = 0; k < nf; k++) s->nw.rhs[k] = -s->nw.R[k];
-  SA_CHECK(linsolve(s, s->nw.rhs, s->nw.da));
+  if (!krylov) SA_CHECK(linsolve(s, s->nw.rhs, s->nw.da));
   if (t->vol) {
     for (int d = 0; d < s->ndof; d++)
       if (s->dm.eq[d] >= 0) {
@@ -440,7 +502,9 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
     }
     double rate = t.r_prev > 0 ? rnorm / t.r_prev : 0.0;
     const char *lsn = t.ls ? "  (line search)" : "";
-    const char *ren = t.it > 0 && !t.fresh_last ? "  (reused factors)" : "";
+    const char *ren = t.it == 0 || t.fresh_last ? ""
+                      : t.krylov_last           ? "  (PCG on earlier factors)"
+                                                : "  (reused factors)";
     if (t.vol)
       sa_log(SA_LOG_DEBUG, "fem", "step %d it %2d |R| %.3e |du| %.3e rate %.3f  p %.6g dV %.2e%s%s",
              step, t.it, rnorm, t.du_norm, rate, s->p, c, lsn, ren);
@@ -464,13 +528,15 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
 
 int fem_newton_alloc(FemSolver *s) {
   int nf = s->dm.nfree;
-  double **v[] = {&s->nw.R, &s->nw.da, &s->nw.db, &s->nw.du, &s->nw.rhs, &s->nw.qf, &s->nw.gf};
+  double **v[] = {&s->nw.R, &s->nw.da, &s->nw.db, &s->nw.du, &s->nw.rhs, &s->nw.qf, &s->nw.gf,
+                  &s->nw.kr, &s->nw.kz, &s->nw.kp, &s->nw.kq};
   for (size_t i = 0; i < sizeof v / sizeof *v; i++) SA_CALLOC(*v[i], nf);
   SA_CALLOC(s->nw.u_it, s->ndof);
   return 0;
 }
 
 void fem_newton_free(FemNewton *nw) {
-  void *p[] = {nw->R, nw->da, nw->db, nw->du, nw->rhs, nw->qf, nw->gf, nw->u_it};
+  void *p[] = {nw->R, nw->da, nw->db, nw->du, nw->rhs, nw->qf, nw->gf, nw->u_it,
+               nw->kr, nw->kz, nw->kp, nw->kq};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
 }

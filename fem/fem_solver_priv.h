@@ -76,6 +76,7 @@ typedef struct { /* fem_assemble.c */
 
 typedef struct { /* fem_newton.c */
   double *R, *da, *db, *du, *rhs, *qf, *gf; /* nfree */
+  double *kr, *kz, *kp, *kq;                /* PCG work (nfree) */
   double *u_it;                             /* last accepted Newton iterate (ndof) */
   double p_it;
   int last_sym;   /* symmetric path used at the last factorisation */

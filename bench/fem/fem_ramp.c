@@ -12,7 +12,7 @@
  *
  *   fem_ramp [key=value ...]   keys: h hb hr (mesh [m]), p_max [Pa], n_out, merit (lazy|energy),
  *     indefinite (lu|modify), predictor (new_load|equilibrium|reuse), reuse_rate, dl_init,
- *     easy_iter, grow, max_iter, ref (1: measure the reference factorisation, 0: skip)
+ *     easy_iter, grow, max_iter, dl_max, krylov_max, krylov_rtol, ref (1: measure the reference factorisation, 0: skip)
  * Output: one line per output step ("step p_kPa angle_deg"), then key = value lines. */
 #include <math.h>
 #include <stdio.h>
@@ -102,6 +102,8 @@ int main(int argc, char **argv) {
   prm.grow = atof(arg(argc, argv, "grow", "1.5"));
   prm.max_iter = atoi(arg(argc, argv, "max_iter", "25"));
   prm.dl_max = atof(arg(argc, argv, "dl_max", "1"));
+  prm.krylov_max = atoi(arg(argc, argv, "krylov_max", "0"));
+  prm.krylov_rtol = atof(arg(argc, argv, "krylov_rtol", "1e-3"));
 
   FemMaterial mref[8], mats[8];
   FemMesh *m0 = NULL, *m = NULL;
@@ -115,10 +117,15 @@ int main(int argc, char **argv) {
   FemSolver *s;
   if (make_solver(m, mats, &prm, &s)) goto fail;
   double w0 = sa_time_now(), c0 = cpu_now(), ang[1000] = {0};
-  int rc = 0, k;
+  int rc = 0, k, iters_total = 0, substeps_total = 0, cuts_total = 0;
+  FemSolveReport rep;
   for (k = 1; k <= n_out && k < 1000; k++) {
     SA_CHECK(fem_solver_set_pressure(s, p_max * k / n_out));
     rc = fem_solver_solve(s);
+    fem_solver_report(s, &rep);
+    iters_total += rep.newton_iters;
+    substeps_total += rep.substeps;
+    cuts_total += rep.cuts;
     if (rc) break;
     SA_CHECK(fem_bending_angle(m, "tip", fem_solver_positions(s), &ang[k]));
     printf("step %d p_kPa %.3f angle_deg %.6f\n", k, 1e-3 * p_max * k / n_out, ang[k]);
@@ -131,16 +138,17 @@ int main(int argc, char **argv) {
   }
   FemSolverStats st;
   fem_solver_stats(s, &st);
-  FemSolveReport rep;
-  fem_solver_report(s, &rep);
   if (want_ref && ref_factor(m0, mref, &tf1, &nf1)) goto fail;
   double tref = want_ref ? 0.5 * (tf0 + tf1) : NAN;
   printf("mesh = %.2f/%.2f/%.2f mm\nnfree = %d\nnelem = %d\ncompleted = %d\n", 1e3 * h, 1e3 * hb,
          1e3 * hr, st.nfree, st.nelem, rc == 0);
   printf("factorisations = %d\ncholesky = %d\nlu = %d\nnot_pd_attempts = %d\nmodified = %d\n"
-         "assemblies = %d\ntangent_assemblies = %d\nreused = %d\nenergy_backtracks = %d\n",
+         "assemblies = %d\ntangent_assemblies = %d\nreused = %d\nenergy_backtracks = %d\n"
+         "krylov_directions = %d\nkrylov_iterations = %d\nkrylov_failed = %d\n"
+         "newton_iterations = %d\nsubsteps = %d\ncuts = %d\n",
          st.n_factor, st.n_chol, st.n_lu, st.n_not_pd, st.n_modified, st.n_assemble,
-         st.n_assemble_tangent, st.n_reuse, st.n_ls_energy);
+         st.n_assemble_tangent, st.n_reuse, st.n_ls_energy, st.n_krylov, st.n_krylov_it,
+         st.n_krylov_fail, iters_total, substeps_total, cuts_total);
   printf("t_assemble = %.2f\nt_factor = %.2f\nt_solve = %.2f\nwall = %.2f\ncpu = %.2f\n",
          st.t_assemble, st.t_factor, st.t_solve, wall, cpu);
   printf("ref_factor_wall = %.4f (%d + %d factorisations: %.4f before, %.4f after)\n", tref, nf0,
