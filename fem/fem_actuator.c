@@ -82,6 +82,11 @@ static const SaParam solver_params[] = {
      "(Armijo on the total potential where it is one)"},
     {"indefinite", SA_PARAM_CHOICE, P(indefinite), "-", "lu", 0, 0, 0, "lu|modify",
      "tangent not positive definite: UMFPACK LU, or Cholesky with the load stiffness reduced"},
+    {"krylov_max", SA_PARAM_INT, P(krylov_max), "-", "0", 0, 1000, 0, NULL,
+     "PCG iterations on the current tangent, preconditioned by the last Cholesky factors, "
+     "before refactorising (0 = off)"},
+    {"krylov_rtol", SA_PARAM_REAL, P(krylov_rtol), "-", "1e-3", 1e-12, 0.5, 0, NULL,
+     "PCG stop: linear residual relative to the Newton residual"},
 };
 #undef P
 const SaParamTable fem_actuator_mesh_table = {
@@ -200,5 +205,7 @@ FemSolverParams fem_actuator_solver_params(const FemActuatorCase *a, int run_thr
                                                          : FEM_PREDICT_NEW_LOAD;
   prm.merit = !strcmp(c->merit, "energy") ? FEM_MERIT_ENERGY : FEM_MERIT_LAZY;
   prm.indefinite = !strcmp(c->indefinite, "modify") ? FEM_INDEFINITE_MODIFY : FEM_INDEFINITE_LU;
+  prm.krylov_max = c->krylov_max;
+  prm.krylov_rtol = c->krylov_rtol;
   return prm;
 }

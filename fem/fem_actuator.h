@@ -24,8 +24,8 @@ typedef struct {
 } FemMatParams;
 
 typedef struct {
-  double rtol, dl_min, reuse_rate;
-  int max_iter, threads;
+  double rtol, dl_min, reuse_rate, krylov_rtol;
+  int max_iter, threads, krylov_max;
   char linear_solver[SA_STR_MAX], predictor[SA_STR_MAX], merit[SA_STR_MAX], indefinite[SA_STR_MAX];
 } FemSolverCaseParams;
 

@@ -15,6 +15,8 @@
  *     indefinite tangents) and with energy merit + modified Cholesky reaches the same
  *     displacement to 1e-8 relative (both converge to rtol = 1e-8 of the force scale; the
  *     equilibrium is unique on this stable path).
+ *  4. PCG directions (krylov_max = 20, krylov_rtol = 1e-3) preconditioned by the last Cholesky
+ *     factors: the same equilibrium to 1e-8, and at least one PCG direction taken.
  *  3. A pressure surface whose rim slides (the cylinder-like case where V is not the
  *     potential): the solver switches the energy merit off and still converges to the default
  *     path's equilibrium. */
@@ -116,6 +118,24 @@ int main(void) {
            st1.n_lu, st1.n_modified, st1.n_ls_energy, d);
   fails += tu_close("energy + modify: displacement against the default path (relative)", d, 0.0,
                     1e-8, 0.0);
+
+  /* 4 (before 3 reuses prm): PCG on the last factors reaches the direct path's equilibrium */
+  prm.krylov_max = 20;
+  TU_CHECK(build(m, &mat, &prm, 1, &s));
+  TU_CHECK(ramp(s, n, p, u1, &st1));
+  fem_solver_destroy(&s);
+  d = rel_diff(u1, u0, n);
+  if (verbose)
+    printf("krylov: %d factorisations, %d PCG directions (%d PCG iterations, %d abandoned); "
+           "|u1 - u0|/|u0| = %.3e\n", st1.n_factor, st1.n_krylov, st1.n_krylov_it,
+           st1.n_krylov_fail, d);
+  fails += tu_close("PCG on earlier factors: displacement against the direct path (relative)", d,
+                    0.0, 1e-8, 0.0);
+  if (st1.n_krylov == 0) {
+    fprintf(stderr, "krylov: no PCG direction taken (the test should exercise it)\n");
+    fails++;
+  }
+  prm.krylov_max = 0;
 
   /* 3: rim free (V is not the potential): merit switched off, same equilibrium */
   prm.indefinite = FEM_INDEFINITE_LU;
