@@ -68,8 +68,9 @@ typedef enum {
 typedef enum {
   FEM_INDEFINITE_LU = 0,       /* UMFPACK LU of the consistent tangent */
   FEM_INDEFINITE_MODIFY = 1    /* Cholesky of K_int + beta p K_q, beta = p_last/p then 0 (the
-                                * load stiffness of the converged pressure, then none); LU only
-                                * if that too is not positive definite */
+                                * load stiffness of the converged pressure, then none); if that
+                                * too is not positive definite the substep fails (recoverable:
+                                * the increment is cut; a limit point is diagnosed as before) */
 } FemIndefinite;
 
 typedef struct {
