@@ -81,7 +81,8 @@ static const SaParam solver_params[] = {
      "line search: lazy (backtrack on inverted elements, NaN, residual growth) or energy "
      "(Armijo on the total potential where it is one)"},
     {"indefinite", SA_PARAM_CHOICE, P(indefinite), "-", "lu", 0, 0, 0, "lu|modify",
-     "tangent not positive definite: UMFPACK LU, or Cholesky with the load stiffness reduced"},
+     "tangent not positive definite: UMFPACK LU, or Cholesky with the load stiffness reduced "
+     "(the increment is cut if that is indefinite too)"},
     {"krylov_max", SA_PARAM_INT, P(krylov_max), "-", "0", 0, 1000, 0, NULL,
      "PCG iterations on the current tangent, preconditioned by the last Cholesky factors, "
      "before refactorising (0 = off)"},
