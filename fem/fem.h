@@ -51,9 +51,29 @@ typedef enum { FEM_LINSOLVER_AUTO = 0, FEM_LINSOLVER_LU = 1 } FemLinSolverChoice
 typedef enum {
   FEM_PREDICT_NEW_LOAD = 0,    /* converged state with the new pressure's load stiffness (default) */
   FEM_PREDICT_EQUILIBRIUM = 1, /* tangent at the converged state and its loads (Euler predictor) */
-  FEM_PREDICT_REUSE = 2        /* the last factors of the converged state when there are such
+  FEM_PREDICT_REUSE = 2,       /* the last factors of the converged state when there are such
                                 * (no factorisation), else EQUILIBRIUM */
+  FEM_PREDICT_EXTRAPOLATE = 3  /* static load control: u_n + r (u_n - u_n-1), r the ratio of
+                                * the pressure increments (secant predictor), then NEW_LOAD;
+                                * pulled back toward u_n if it inverts an element */
 } FemPredictor;
+
+/* Line-search merit (docs/fem_time_to_accuracy.md). */
+typedef enum {
+  FEM_MERIT_LAZY = 0,  /* backtrack only on a domain error, NaN or |R| growth > ls_growth */
+  FEM_MERIT_ENERGY = 1 /* Armijo backtracking (quadratic interpolation) on the total potential
+                        * Pi = W(u) - p V(u) - f_dead.u when it is one (static, load control,
+                        * no contributors) and the direction descends; else LAZY */
+} FemMerit;
+
+/* What a Newton iteration does when CHOLMOD finds the tangent not positive definite. */
+typedef enum {
+  FEM_INDEFINITE_LU = 0,       /* UMFPACK LU of the consistent tangent */
+  FEM_INDEFINITE_MODIFY = 1    /* Cholesky of K_int + beta p K_q, beta = p_last/p then 0 (the
+                                * load stiffness of the converged pressure, then none); if that
+                                * too is not positive definite the substep fails (recoverable:
+                                * the increment is cut; a limit point is diagnosed as before) */
+} FemIndefinite;
 
 typedef struct {
   double rtol;       /* residual norm relative to the internal-force norm (incl. reactions) */
@@ -79,6 +99,13 @@ typedef struct {
   double reuse_rate; /* modified Newton: after a step with fresh factors the next direction
                       * reuses them, and keeps reusing while |R| falls by this factor per
                       * iteration (0, the default = full Newton: fresh factors every iteration) */
+  FemMerit merit;    /* line-search merit */
+  double armijo;     /* energy merit: sufficient decrease Pi(a) <= Pi(0) + armijo a Pi'(0) */
+  FemIndefinite indefinite; /* not positive definite tangent: LU or modified Cholesky */
+  int krylov_max;    /* > 0: a Newton direction is first sought by preconditioned CG on the
+                      * current tangent with the last Cholesky factors as preconditioner, up
+                      * to krylov_max iterations, before refactorising (0 = off) */
+  double krylov_rtol; /* PCG stop: |K du + R| <= krylov_rtol |R| (inexact Newton) */
 } FemSolverParams;
 
 FemSolverParams fem_solver_params_default(void);
@@ -128,6 +155,12 @@ typedef struct {
   double asymmetry;         /* max|K-K^T|/max|K| of the last tangent checked */
   int n_pattern_rebuilds;   /* pattern + analysis rebuilt because a contributor coupled a node
                              * pair outside it */
+  int n_modified;           /* factorisations of a modified (load stiffness reduced) tangent */
+  int n_not_pd;             /* CHOLMOD attempts that found a tangent not positive definite */
+  int n_ls_energy;          /* backtracks on the energy merit */
+  int n_krylov;             /* Newton directions from PCG on the last factors */
+  int n_krylov_it;          /* PCG iterations (each a product with K and a factor solve) */
+  int n_krylov_fail;        /* PCG attempts abandoned (limit, negative curvature) */
 } FemSolverStats;
 
 /* mesh [borrowed, must outlive the solver]; mats [in] one per mesh region (copied). */
@@ -232,6 +265,11 @@ void fem_solver_stats(const FemSolver *s, FemSolverStats *st);
  * rel_err [out] = |K v - (R(u + h v) - R(u - h v)) / 2h| / |K v| for a fixed pseudo-random v
  * over the free dofs. Debugging and tests; allocates. */
 int fem_solver_check_tangent(FemSolver *s, double h, double *rel_err);
+/* Finite-difference check of the energy merit (FEM_MERIT_ENERGY) at the current positions
+ * and pressure p [in]: rel_err [out] = |R.v - (Pi(u + h v) - Pi(u - h v)) / 2h| / |R.v|,
+ * Pi = W(u) - p V(u) - f_dead.u, R the residual at pressure p, v a fixed pseudo-random
+ * free-dof vector. Small only where p V is the pressure's potential (rim fixed). */
+int fem_solver_check_potential(FemSolver *s, double p, double h, double *rel_err);
 const FemMesh *fem_solver_mesh(const FemSolver *s);
 /* Checkpoint (fem_checkpoint.c): the solver's state - displacements, HHT velocities and
  * accelerations, committed and target loads, time, history - to the binary stream f [in]

@@ -78,9 +78,20 @@ static const SaParam solver_params[] = {
      "reuse the factors while the residual norm falls by this factor per iteration "
      "(0 = full Newton)"},
     {"predictor", SA_PARAM_CHOICE, P(predictor), "-", "new_load", 0, 0, 0,
-     "new_load|equilibrium|reuse",
-     "first-iteration tangent of a substep: converged state with the new load's stiffness, "
-     "with its own load, or its last factors reused"},
+     "new_load|equilibrium|reuse|extrapolate",
+     "first iterate of a substep: converged state with the new load's stiffness, with its own "
+     "load, its last factors reused, or the secant extrapolation of the last two states"},
+    {"merit", SA_PARAM_CHOICE, P(merit), "-", "lazy", 0, 0, 0, "lazy|energy",
+     "line search: lazy (backtrack on inverted elements, NaN, residual growth) or energy "
+     "(Armijo on the total potential where it is one)"},
+    {"indefinite", SA_PARAM_CHOICE, P(indefinite), "-", "lu", 0, 0, 0, "lu|modify",
+     "tangent not positive definite: UMFPACK LU, or Cholesky with the load stiffness reduced "
+     "(the increment is cut if that is indefinite too)"},
+    {"krylov_max", SA_PARAM_INT, P(krylov_max), "-", "0", 0, 1000, 0, NULL,
+     "PCG iterations on the current tangent, preconditioned by the last Cholesky factors, "
+     "before refactorising (0 = off)"},
+    {"krylov_rtol", SA_PARAM_REAL, P(krylov_rtol), "-", "1e-3", 1e-12, 0.5, 0, NULL,
+     "PCG stop: linear residual relative to the Newton residual"},
 };
 #undef P
 const SaParamTable fem_actuator_mesh_table = {
@@ -335,6 +346,11 @@ FemSolverParams fem_actuator_solver_params(const FemActuatorCase *a, int run_thr
   prm.reuse_rate = c->reuse_rate;
   prm.predictor = !strcmp(c->predictor, "equilibrium") ? FEM_PREDICT_EQUILIBRIUM
                   : !strcmp(c->predictor, "reuse")       ? FEM_PREDICT_REUSE
+                  : !strcmp(c->predictor, "extrapolate") ? FEM_PREDICT_EXTRAPOLATE
                                                          : FEM_PREDICT_NEW_LOAD;
+  prm.merit = !strcmp(c->merit, "energy") ? FEM_MERIT_ENERGY : FEM_MERIT_LAZY;
+  prm.indefinite = !strcmp(c->indefinite, "modify") ? FEM_INDEFINITE_MODIFY : FEM_INDEFINITE_LU;
+  prm.krylov_max = c->krylov_max;
+  prm.krylov_rtol = c->krylov_rtol;
   return prm;
 }

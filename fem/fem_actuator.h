@@ -24,9 +24,9 @@ typedef struct {
 } FemMatParams;
 
 typedef struct {
-  double rtol, dl_min, reuse_rate;
-  int max_iter, threads;
-  char linear_solver[SA_STR_MAX], predictor[SA_STR_MAX];
+  double rtol, dl_min, reuse_rate, krylov_rtol;
+  int max_iter, threads, krylov_max;
+  char linear_solver[SA_STR_MAX], predictor[SA_STR_MAX], merit[SA_STR_MAX], indefinite[SA_STR_MAX];
 } FemSolverCaseParams;
 
 /* The three sections every actuator scene reads. */

@@ -334,6 +334,33 @@ int fem_asm_newton(FemSolver *s, const double *x, double p, int want_K) {
   return rc;
 }
 
+/* Adds scale * K_q(x) (the follower pressure's load stiffness per unit pressure) to Newton's
+ * tangent values: with scale = -(1 - beta) p it turns K_int + p K_q into K_int + beta p K_q
+ * (FEM_INDEFINITE_MODIFY). Same face loop as the assembly; no allocation. */
+void fem_asm_add_load_stiffness(FemSolver *s, const double *x, double scale) {
+  int nfn = s->as.nfn, nfd = 3 * nfn;
+  double t0 = sa_time_now();
+  for (int f = 0; f < s->as.npf; f++) {
+    const int *c = s->as.pf + (size_t)f * nfn;
+    double xf[18], fe[18], Ke[324];
+    for (int a = 0; a < nfn; a++)
+      for (int k = 0; k < 3; k++) xf[3 * a + k] = x[3 * c[a] + k];
+    fem_face_pressure(nfn, xf, 1.0, fe, Ke);
+    const int *fp = s->dm.fpair + (size_t)f * nfn * nfn;
+    for (int a = 0; a < nfn; a++)
+      for (int b = 0; b < nfn; b++) {
+        const int *sl = s->dm.slot9 + (size_t)fp[a * nfn + b] * 9;
+        const double *Kab = Ke + (size_t)(3 * a) * nfd + 3 * b;
+        for (int i = 0; i < 3; i++)
+          for (int j = 0; j < 3; j++) {
+            int k = sl[3 * i + j];
+            if (k >= 0) s->as.val[k] += scale * Kab[i * nfd + j];
+          }
+      }
+  }
+  s->st.t_assemble += sa_time_now() - t0;
+}
+
 /* Read-back assembly at the converged state: separate arrays, so a getter called between
  * solves changes nothing a later Newton iteration (or a reused factorisation) depends on. */
 int fem_asm_readback(FemSolver *s, int want_K) {

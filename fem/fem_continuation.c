@@ -90,6 +90,15 @@ void fem_solver_set_monitor(FemSolver *s, FemMonitor fn, void *ctx) {
   s->ct.mon_ctx = ctx;
 }
 
+/* Only the pressure is ramped in this solve (dead loads, gravity, prescribed values fixed). */
+static int only_pressure(const FemSolver *s) {
+  for (int c = 0; c < 3; c++)
+    if (s->ct.g_t[c] != s->ct.g_c[c]) return 0;
+  for (int d = 0; d < s->ndof; d++)
+    if (s->ct.fn_t[d] != s->ct.fn_c[d] || s->ct.up_t[d] != s->ct.up_c[d]) return 0;
+  return 1;
+}
+
 static void restore_last(FemSolver *s) {
   memcpy(s->u, s->u_last, (size_t)s->ndof * sizeof *s->u);
   fem_dyn_restore(s);
@@ -98,6 +107,7 @@ static void restore_last(FemSolver *s) {
 }
 
 static void commit_substep(FemSolver *s, double dt) {
+  memcpy(s->u_prev, s->u_last, (size_t)s->ndof * sizeof *s->u);
   memcpy(s->u_last, s->u, (size_t)s->ndof * sizeof *s->u);
   fem_dyn_commit(s);
   double dV = s->V - s->ct.V_last, dP = s->p - s->ct.p_last;
@@ -161,6 +171,23 @@ static void static_velocities(FemSolver *s) {
   s->time += s->ct.static_dt;
 }
 
+/* FEM_PREDICT_EXTRAPOLATE: free dofs u = u_n + r (u_n - u_n-1) with r = (p - p_n)/(p_n - p_n-1),
+ * the secant through the last two converged states in the pressure, when both are static and
+ * load controlled with only the pressure changing (0 < r <= 4). Judged by iterations to converge
+ * and increments accepted, not by the first residual, which the extrapolated state makes
+ * larger (docs/fem_time_to_accuracy.md). Returns 1 when applied. */
+static int extrapolate(FemSolver *s) {
+  if (s->prm.predictor != FEM_PREDICT_EXTRAPOLATE || s->ct.control != FEM_CONTROL_LOAD) return 0;
+  double dp0 = s->ct.p_last - s->ct.p_prev;
+  if (dp0 == 0.0 || s->ct.n_static_commits < 2) return 0;
+  double r = (s->p - s->ct.p_last) / dp0;
+  if (!(r > 0.0 && r <= 4.0)) return 0;
+  for (int d = 0; d < s->ndof; d++)
+    if (s->dm.eq[d] >= 0) s->u[d] = s->u_last[d] + r * (s->u_last[d] - s->u_prev[d]);
+  fem_set_x(s);
+  return 1;
+}
+
 int fem_cont_ramp(FemSolver *s, int dynamic, double dt_total) {
   SA_REQUIRE(s->setup_done, SA_ERR_INPUT, "fem_solver_setup must be called before solving");
   SA_REQUIRE(!dynamic || s->ct.control == FEM_CONTROL_LOAD, SA_ERR_INPUT,
@@ -181,6 +208,7 @@ int fem_cont_ramp(FemSolver *s, int dynamic, double dt_total) {
      * iteration from the converged state is the tangent predictor. */
     StepKind sk = {0};
     if (dynamic) sk = fem_dyn_step_kind(s, dl * dt_total);
+    s->nw.extrapolated = !dynamic && extrapolate(s);
     int iters = 0;
     s->ct.step_count++;
     s->nw.saw_not_pd = 0;
@@ -194,6 +222,8 @@ int fem_cont_ramp(FemSolver *s, int dynamic, double dt_total) {
     s->ct.rep.last_dl = dl;
     if (rc == 0) {
       commit_substep(s, sk.dt);
+      /* the secant predictor needs two static, pressure-only converged states in a row */
+      s->ct.n_static_commits = dynamic || !only_pressure(s) ? 0 : s->ct.n_static_commits + 1;
       /* iters == 0: the factors are still those of the state before; none after a pattern
        * rebuild in the last assembly */
       if (iters > 0 && s->nw.have_factors) {

@@ -198,6 +198,10 @@ int fem_linsolve_factorize(FemLinSolver *s, const double *values, int symmetric)
     if (s->cc.status != CHOLMOD_NOT_POSDEF && s->cc.status < CHOLMOD_OK)
       return SA_ERROR(SA_ERR_LIBRARY, "cholmod_factorize failed (status %d)", s->cc.status);
     s->info.not_pd = 1;
+    if (symmetric == 2) {
+      sa_timing_add("fem factorise", sa_time_now() - t0);
+      return SA_ERR_NOT_SPD;
+    }
   }
   int rc = umf_factorize(s, values);
   sa_timing_add("fem factorise", sa_time_now() - t0);

@@ -42,7 +42,8 @@ int fem_linsolve_create(int n, const int *colptr, const int *rowind, int nthread
                         FemLinSolver **out);
 /* Factorise the matrix with values [borrowed until the next factorise; must stay unchanged
  * while solving]. symmetric = 1: try CHOLMOD first, fall back to UMFPACK when not positive
- * definite; symmetric = 0: UMFPACK directly. Returns SA_ERR_NOT_SPD (> 0) when even UMFPACK
+ * definite; symmetric = 2: CHOLMOD only, SA_ERR_NOT_SPD (> 0, no error pushed, info.not_pd
+ * set) when not positive definite; symmetric = 0: UMFPACK directly. Returns SA_ERR_NOT_SPD (> 0) when even UMFPACK
  * finds the matrix singular. */
 int fem_linsolve_factorize(FemLinSolver *s, const double *values, int symmetric);
 /* Solve A x = b with the last factor. b [in] n, x [out] n (may not alias b). */

@@ -63,8 +63,48 @@ static double residual(FemSolver *s, const StepKind *sk, double *fref) {
   return sqrt(r2);
 }
 
-static int factorize(FemSolver *s, const StepKind *sk) {
-  if (sk->dynamic) fem_dyn_effective_tangent(s, sk);
+/* CHOLMOD-only attempt (symmetric = 2); > 0 when not positive definite. */
+static int try_cholesky(FemSolver *s) {
+  double t0 = sa_time_now();
+  int rc = fem_linsolve_factorize(s->dm.lin, s->as.val, 2);
+  s->st.t_factor += sa_time_now() - t0;
+  if (rc == SA_ERR_NOT_SPD) s->st.n_not_pd++;
+  return rc;
+}
+
+/* FEM_INDEFINITE_MODIFY: Cholesky of the consistent tangent, else of K_int + beta p K_q with
+ * beta = p_last/p (the converged pressure's load stiffness: at the converged state this is
+ * its own equilibrium tangent, positive definite on a stable path), else beta = 0. A positive
+ * definite approximation of the Hessian of the potential gives a descent direction that the
+ * energy line search can damp. Returns 0 (CHOLMOD factors of val), SA_ERR_NOT_SPD when every
+ * attempt failed (val restored to the consistent tangent), < 0 on a library error. */
+static int factorize_modified(FemSolver *s, double p_asm) {
+  int rc = try_cholesky(s);
+  if (rc <= 0) return rc;
+  double betas[2] = {0.0, 0.0}, cur = 1.0;
+  int nb = 0;
+  if (s->ct.p_last > 0 && s->ct.p_last < p_asm) betas[nb++] = s->ct.p_last / p_asm;
+  betas[nb++] = 0.0;
+  for (int i = 0; i < nb; i++) {
+    fem_asm_add_load_stiffness(s, s->x, (betas[i] - cur) * p_asm);
+    cur = betas[i];
+    rc = try_cholesky(s);
+    if (rc <= 0) {
+      if (rc == 0) {
+        s->st.n_modified++;
+        sa_log(SA_LOG_DEBUG, "fem", "tangent not positive definite: Cholesky of K_int + %.3g p K_q",
+               cur);
+      }
+      return rc;
+    }
+  }
+  fem_asm_add_load_stiffness(s, s->x, (1.0 - cur) * p_asm);
+  return SA_ERR_NOT_SPD;
+}
+
+/* p_asm: the pressure whose load stiffness the assembled tangent holds. */
+static int factorize(FemSolver *s, const StepKind *sk, double p_asm, int eff_done) {
+  if (sk->dynamic && !eff_done) fem_dyn_effective_tangent(s, sk);
   /* CHOLMOD at every iteration: a tangent that is indefinite at the first iteration of a
    * substep (the load increment applied to the converged state) is usually positive definite
    * again near the new equilibrium, and a failed CHOLMOD attempt costs at most one Cholesky
@@ -83,13 +123,34 @@ static int factorize(FemSolver *s, const StepKind *sk) {
              s->prm.sym_tol);
     }
   }
+  int rc;
+  if (sym && s->prm.indefinite == FEM_INDEFINITE_MODIFY && !sk->dynamic && s->as.npf > 0 &&
+      p_asm > 0 && s->ct.control == FEM_CONTROL_LOAD) {
+    rc = factorize_modified(s, p_asm);
+    if (rc == 0) {
+      s->st.n_factor++;
+      s->st.n_chol++;
+      s->nw.last_sym = 1;
+      s->nw.have_factors = 1;
+      return 0;
+    }
+    if (rc < 0) return sa_error_push(rc, __func__, __FILE__, __LINE__);
+    /* even K_int is not positive definite at this iterate: the increment carried it too far
+     * (or the path is at a limit point); cut the increment rather than take an LU direction
+     * that need not descend (cheaper: LU costs ~6 Cholesky; measured in
+     * docs/fem_time_to_accuracy.md). A limit point is still diagnosed: fail_not_pd is set. */
+    s->nw.saw_not_pd = s->ct.fail_not_pd = 1;
+    return SA_ERROR(SA_ERR_NOT_SPD, "tangent not positive definite even without the load "
+                    "stiffness (indefinite = modify): increment too large or limit point");
+  }
   double t0 = sa_time_now();
-  int rc = fem_linsolve_factorize(s->dm.lin, s->as.val, sym);
+  rc = fem_linsolve_factorize(s->dm.lin, s->as.val, sym);
   s->st.t_factor += sa_time_now() - t0;
   s->st.n_factor++;
   FemLinInfo li;
   fem_linsolve_info(s->dm.lin, &li);
   if (li.not_pd) {
+    s->st.n_not_pd++;
     sa_log(s->nw.saw_not_pd ? SA_LOG_DEBUG : SA_LOG_INFO, "fem",
            "tangent not positive definite (CHOLMOD): UMFPACK LU for this iteration");
     s->nw.saw_not_pd = s->ct.fail_not_pd = 1;
@@ -114,18 +175,87 @@ static int linsolve(FemSolver *s, const double *b, double *x) {
   return rc;
 }
 
+/* Preconditioned CG on K x = b (K: the tangent values in val, full pattern; preconditioner:
+ * the factors held by lin, those of an earlier iterate). Returns 0 when |K x - b| <= rtol |b|
+ * within maxit iterations, 1 when not (limit, or p.Kp <= 0: the tangent is not positive
+ * definite along p and CG's minimisation breaks down), < 0 on a solve error. */
+static int pcg(FemSolver *s, const double *b, double *x, int maxit, double rtol, int *its) {
+  const int n = s->dm.nfree;
+  const int *cp = s->dm.colptr, *ri = s->dm.rowind;
+  const double *K = s->as.val;
+  double *r = s->nw.kr, *z = s->nw.kz, *p = s->nw.kp, *q = s->nw.kq;
+  memset(x, 0, (size_t)n * sizeof *x);
+  memcpy(r, b, (size_t)n * sizeof *r);
+  double bn = fem_nrm2(b, n);
+  *its = 0;
+  if (bn == 0.0) return 0;
+  SA_CHECK(linsolve(s, r, z));
+  memcpy(p, z, (size_t)n * sizeof *p);
+  double rz = fem_dot(r, z, n);
+  for (int it = 1; it <= maxit; it++) {
+    *its = it;
+    memset(q, 0, (size_t)n * sizeof *q);
+    for (int j = 0; j < n; j++) {
+      double pj = p[j];
+      for (int k = cp[j]; k < cp[j + 1]; k++) q[ri[k]] += K[k] * pj;
+    }
+    double pq = fem_dot(p, q, n);
+    if (!(pq > 0.0)) return 1;
+    double a = rz / pq;
+    for (int i = 0; i < n; i++) {
+      x[i] += a * p[i];
+      r[i] -= a * q[i];
+    }
+    if (fem_nrm2(r, n) <= rtol * bn) return 0;
+    SA_CHECK(linsolve(s, r, z));
+    double rz1 = fem_dot(r, z, n), be = rz1 / rz;
+    rz = rz1;
+    for (int i = 0; i < n; i++) p[i] = z[i] + be * p[i];
+  }
+  return 1;
+}
+
 /* Iteration state of one substep. */
 typedef struct {
-  int vol, it, ls, stall, nfresh, have_fact, fresh_last, reuse;
+  int vol, it, ls, stall, nfresh, have_fact, fresh_last, reuse, krylov_last;
   double r_prev, r_first, merit_prev, step_len, dp, gb, du_norm, qnorm, p_pred;
+  int emerit;       /* the energy merit applies to this substep */
+  double p_asm;     /* pressure of the load stiffness in the assembled tangent */
+  double pi, pi_prev, pi_scale, slope; /* potential now / at the accepted iterate, its scale,
+                                        * Pi'(0) = R.du along the last direction */
 } Iter;
+
+/* Total potential of a static, load-controlled state without contributors: stored energy minus
+ * the work of the follower pressure (a potential with the rim clamped: p V(u)) and of the dead
+ * loads. pi_scale: the size of its terms, for the round-off allowance of the Armijo test. */
+static double potential(const FemSolver *s, double *pi_scale) {
+  double wd = 0.0;
+  for (int d = 0; d < s->ndof; d++) wd += s->as.fdead[d] * s->u[d];
+  *pi_scale = fabs(s->as.energy) + fabs(s->p * s->V) + fabs(wd);
+  return s->as.energy - s->p * s->V - wd;
+}
+
+/* The energy merit needs p V(u) to be the pressure's potential on the free dofs: dV/du = q
+ * there (true when the rim of the pressure surface is fixed or lies on planes through the
+ * origin: docs/fem.md). Checked at the first assembly of every substep, O(ndof). */
+static int potential_consistent(const FemSolver *s) {
+  double dmax = 0.0, qmax = 0.0;
+  for (int d = 0; d < s->ndof; d++) {
+    if (s->dm.eq[d] < 0) continue;
+    dmax = fmax(dmax, fabs(s->as.gv[d] - s->as.q[d]));
+    qmax = fmax(qmax, fabs(s->as.q[d]));
+  }
+  return dmax <= 1e-8 * qmax;
+}
 
 /* Assembly of the trial state (residual only when the plan is to reuse factors), the domain
  * hook, residual and merit. Returns the assembly code (0, SA_ERR_INVERTED, SA_ERR_DOMAIN, or
  * < 0 fatal). */
 static int evaluate(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, double *rnorm,
                     double *fref, double *c, double *merit) {
-  int rc = fem_asm_newton(s, s->x, t->it == 0 ? t->p_pred : s->p, !plan_reuse);
+  double p_asm = t->it == 0 ? t->p_pred : s->p;
+  int rc = fem_asm_newton(s, s->x, p_asm, !plan_reuse);
+  if (!plan_reuse) t->p_asm = p_asm;
   if (rc == 0 && s->nw.domain_check && s->nw.domain_check(s, s->x, s->nw.domain_ctx)) {
     sa_error_clear();
     rc = SA_ERR_DOMAIN;
@@ -138,6 +268,7 @@ static int evaluate(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, d
      * (|q| |c| / (g.b): the pressure error that c implies, times the load per pressure) */
     *merit = *rnorm;
     if (t->vol && t->gb != 0.0) *merit += t->qnorm * fabs(*c) / fabs(t->gb);
+    if (t->emerit) t->pi = potential(s, &t->pi_scale);
   }
   return rc;
 }
@@ -181,6 +312,7 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
   int rc = 0;
   if (!use_old && plan_reuse) { /* tentative reuse rejected: the tangent at this iterate */
     rc = fem_asm_newton(s, s->x, s->p, 1);
+    t->p_asm = s->p;
     if (rc) {
       *why = FEM_DIVERGED_DOMAIN;
       if (rc < 0) return sa_error_push(rc, __func__, __FILE__, __LINE__);
@@ -188,10 +320,32 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
                       s->as.n_inverted, t->it);
     }
   }
-  rc = use_old ? 0 : factorize(s, sk);
-  if (!use_old) t->nfresh++;
-  else s->st.n_reuse++;
-  t->fresh_last = !use_old;
+  /* Krylov on the last Cholesky factors (krylov_max > 0): the tangent of this iterate is
+   * assembled, the factors are of an earlier one; PCG to krylov_rtol, else refactorise. */
+  int krylov = 0, eff_done = 0;
+  if (!use_old && s->prm.krylov_max > 0 && s->nw.have_factors && s->nw.last_sym && !t->vol &&
+      t->it > 0) {
+    if (sk->dynamic) fem_dyn_effective_tangent(s, sk);
+    eff_done = 1;
+    for (int k = 0; k < nf; k++) s->nw.rhs[k] = -s->nw.R[k];
+    int its = 0;
+    double t0 = sa_time_now();
+    int prc = pcg(s, s->nw.rhs, s->nw.da, s->prm.krylov_max, s->prm.krylov_rtol, &its);
+    sa_timing_add("fem krylov", sa_time_now() - t0);
+    if (prc < 0) return sa_error_push(prc, __func__, __FILE__, __LINE__);
+    s->st.n_krylov_it += its;
+    if (prc == 0) {
+      krylov = 1;
+      s->st.n_krylov++;
+    } else {
+      s->st.n_krylov_fail++;
+    }
+  }
+  rc = use_old || krylov ? 0 : factorize(s, sk, t->p_asm, eff_done);
+  if (!use_old && !krylov) t->nfresh++;
+  else if (use_old) s->st.n_reuse++;
+  t->fresh_last = !use_old && !krylov;
+  t->krylov_last = krylov;
   t->have_fact = rc == 0;
   if (rc) {
     *why = FEM_DIVERGED_LINEAR_SOLVE;
@@ -202,7 +356,7 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
   for (int k = 0; k < nf; k++) s->nw.rhs[k] = -s->nw.R[k];
-  SA_CHECK(linsolve(s, s->nw.rhs, s->nw.da));
+  if (!krylov) SA_CHECK(linsolve(s, s->nw.rhs, s->nw.da));
   if (t->vol) {
     for (int d = 0; d < s->ndof; d++)
       if (s->dm.eq[d] >= 0) {
@@ -225,6 +379,8 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
     memcpy(s->nw.du, s->nw.da, (size_t)nf * sizeof *s->nw.du);
   }
   t->du_norm = fem_nrm2(s->nw.du, nf);
+  t->slope = t->emerit ? fem_dot(s->nw.R, s->nw.du, nf) : 0.0;
+  t->pi_prev = t->pi;
   memcpy(s->nw.u_it, s->u, (size_t)s->ndof * sizeof *s->u);
   s->nw.p_it = s->p;
   t->merit_prev = merit;
@@ -248,6 +404,8 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
 int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
   Iter t = {.vol = s->ct.control == FEM_CONTROL_VOLUME, .r_prev = -1, .r_first = -1,
             .merit_prev = INFINITY, .step_len = 1.0};
+  t.emerit = s->prm.merit == FEM_MERIT_ENERGY && s->prm.line_search && !sk->dynamic && !t.vol &&
+             s->as.ncontrib == 0;
   *iters = 0;
   s->nw.reason = FEM_NEWTON_ITERATING;
   s->as.t_eval = s->time + sk->dt; /* laws see the end of the substep */
@@ -262,7 +420,9 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
   t.reuse = s->prm.predictor == FEM_PREDICT_REUSE && s->nw.fact_converged &&
             s->nw.fact_dynamic == sk->dynamic &&
             (!sk->dynamic || (s->nw.fact_dt == sk->dt && s->nw.fact_alpha == sk->alpha));
-  t.p_pred = s->prm.predictor == FEM_PREDICT_NEW_LOAD ? s->p : s->ct.p_last;
+  t.p_pred = s->prm.predictor == FEM_PREDICT_NEW_LOAD || s->prm.predictor == FEM_PREDICT_EXTRAPOLATE
+                 ? s->p
+                 : s->ct.p_last;
   /* reuse_rate > 0 (modified Newton): a direction from fresh factors is followed by one that
    * reuses them (assembly + triangular solves): for a nearly incompressible solid a full
    * Newton step leaves a volumetric residual ~ kappa |grad du|^2 (|R| jumps x10-100) that one
@@ -285,17 +445,50 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
       return sa_error_push(rc, __func__, __FILE__, __LINE__);
     }
     int bad = rc != 0 || !isfinite(rnorm);
+    if (t.it == 0 && t.emerit && !bad && !potential_consistent(s)) {
+      t.emerit = 0;
+      sa_log(SA_LOG_DEBUG, "fem", "energy merit off: dV/du differs from the pressure load q "
+             "(the pressure surface's rim is neither fixed nor on planes through the origin)");
+    }
     /* Backtrack on domain errors / non-finite residuals, and on a residual blow-up by more
      * than ls_growth. Not on any increase: for a nearly incompressible solid the full Newton
      * step changes the volume to second order and kappa times that makes the residual norm
      * jump although the next iterations converge quadratically (docs/fem.md). */
-    if (t.it > 0 && s->prm.line_search && t.ls < 6 &&
-        (bad || merit > s->prm.ls_growth * t.merit_prev)) {
+    /* Energy merit on a descent direction (Pi'(0) = R.du < 0): Armijo sufficient decrease,
+     * the next step length from the quadratic through Pi(0), Pi'(0) and Pi(a), kept in
+     * [0.1, 0.5] a; up to 10 backtracks, then the step is taken as it is. The round-off
+     * allowance (1e-13 of the potential's terms) lets converged iterates pass. */
+    int energy_ls = t.it > 0 && t.emerit && t.slope < 0.0;
+    if (energy_ls && !bad && t.ls < 10) {
+      double a = t.step_len, dpi = t.pi - t.pi_prev;
+      if (dpi > s->prm.armijo * a * t.slope + 1e-13 * t.pi_scale) {
+        double den = 2.0 * (dpi - t.slope * a);
+        double an = den > 0.0 ? -t.slope * a * a / den : 0.5 * a;
+        t.step_len = fmin(fmax(an, 0.1 * a), 0.5 * a);
+        t.ls++;
+        s->st.n_ls_energy++;
+        for (int d = 0; d < s->ndof; d++)
+          if (s->dm.eq[d] >= 0) s->u[d] = s->nw.u_it[d] + t.step_len * s->nw.du[s->dm.eq[d]];
+        fem_set_x(s);
+        continue;
+      }
+    }
+    if (t.it > 0 && s->prm.line_search && t.ls < (energy_ls ? 10 : 6) &&
+        (bad || (!energy_ls && merit > s->prm.ls_growth * t.merit_prev))) {
       t.step_len *= 0.5;
       t.ls++;
       for (int d = 0; d < s->ndof; d++)
         if (s->dm.eq[d] >= 0) s->u[d] = s->nw.u_it[d] + t.step_len * s->nw.du[s->dm.eq[d]];
       s->p = s->nw.p_it + t.step_len * t.dp;
+      fem_set_x(s);
+      continue;
+    }
+    if (t.it == 0 && bad && s->nw.extrapolated && t.ls < 4) {
+      /* the extrapolated start is outside the domain: halve the extrapolation, then u_n */
+      t.ls++;
+      double f = t.ls < 4 ? 0.5 : 0.0;
+      for (int d = 0; d < s->ndof; d++)
+        if (s->dm.eq[d] >= 0) s->u[d] = s->u_last[d] + f * (s->u[d] - s->u_last[d]);
       fem_set_x(s);
       continue;
     }
@@ -317,7 +510,9 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
     }
     double rate = t.r_prev > 0 ? rnorm / t.r_prev : 0.0;
     const char *lsn = t.ls ? "  (line search)" : "";
-    const char *ren = t.it > 0 && !t.fresh_last ? "  (reused factors)" : "";
+    const char *ren = t.it == 0 || t.fresh_last ? ""
+                      : t.krylov_last           ? "  (PCG on earlier factors)"
+                                                : "  (reused factors)";
     if (t.vol)
       sa_log(SA_LOG_DEBUG, "fem", "step %d it %2d |R| %.3e |du| %.3e rate %.3f  p %.6g dV %.2e%s%s",
              step, t.it, rnorm, t.du_norm, rate, s->p, c, lsn, ren);
@@ -341,7 +536,8 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
 
 int fem_newton_alloc(FemSolver *s) {
   int nf = s->dm.nfree;
-  double **v[] = {&s->nw.R, &s->nw.da, &s->nw.db, &s->nw.du, &s->nw.rhs, &s->nw.qf, &s->nw.gf};
+  double **v[] = {&s->nw.R, &s->nw.da, &s->nw.db, &s->nw.du, &s->nw.rhs, &s->nw.qf, &s->nw.gf,
+                  &s->nw.kr, &s->nw.kz, &s->nw.kp, &s->nw.kq};
   for (size_t i = 0; i < sizeof v / sizeof *v; i++) SA_CALLOC(*v[i], nf);
   SA_CALLOC(s->nw.u_it, s->ndof);
   int nreg = s->m->nregions > 0 ? s->m->nregions : 1;
@@ -354,6 +550,7 @@ int fem_newton_alloc(FemSolver *s) {
 }
 
 void fem_newton_free(FemNewton *nw) {
-  void *p[] = {nw->R, nw->da, nw->db, nw->du, nw->rhs, nw->qf, nw->gf, nw->u_it};
+  void *p[] = {nw->R, nw->da, nw->db, nw->du, nw->rhs, nw->qf, nw->gf, nw->u_it,
+               nw->kr, nw->kz, nw->kp, nw->kq};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
 }

@@ -23,7 +23,9 @@ FemSolverParams fem_solver_params_default(void) {
       .dl_init = 1.0, .dl_min = 1e-4, .dl_max = 1.0, .easy_iter = 5, .grow = 1.5, .cut = 0.5,
       .threads = 2, .linsolver = FEM_LINSOLVER_AUTO, .sym_tol = 1e-9, .hht_alpha = -0.05,
       .mass_damping = 0.0, .ls_growth = 1e3, .max_stall = 6,
-      .predictor = FEM_PREDICT_NEW_LOAD, .reuse_rate = 0.0};
+      .predictor = FEM_PREDICT_NEW_LOAD, .reuse_rate = 0.0,
+      .merit = FEM_MERIT_LAZY, .armijo = 1e-4, .indefinite = FEM_INDEFINITE_LU,
+      .krylov_max = 0, .krylov_rtol = 1e-3};
   return p;
 }
 
@@ -35,8 +37,8 @@ int fem_solver_create(const FemMesh *mesh, const FemMaterial *mats, const FemSol
   SA_REQUIRE(mesh && mesh->nnodes > 0 && mesh->nelem > 0, SA_ERR_INPUT, "empty mesh");
   SA_REQUIRE(mats, SA_ERR_INPUT, "no materials");
   if (prm) {
-    SA_REQUIRE(prm->predictor >= FEM_PREDICT_NEW_LOAD && prm->predictor <= FEM_PREDICT_REUSE,
-               SA_ERR_INPUT, "predictor %d is not one of 0 (new_load), 1 (equilibrium), 2 (reuse)",
+    SA_REQUIRE(prm->predictor >= FEM_PREDICT_NEW_LOAD && prm->predictor <= FEM_PREDICT_EXTRAPOLATE,
+               SA_ERR_INPUT, "predictor %d is not one of 0 (new_load), 1 (equilibrium), 2 (reuse), 3 (extrapolate)",
                (int)prm->predictor);
     SA_REQUIRE(prm->reuse_rate >= 0 && prm->reuse_rate < 1, SA_ERR_INPUT,
                "reuse_rate %g not in [0, 1)", prm->reuse_rate);
@@ -127,7 +129,7 @@ int fem_solver_setup(FemSolver *s) {
   SA_CHECK(fem_asm_setup(s));
   SA_CHECK(fem_newton_alloc(s));
   int ne = m->nelem, nd = s->ndof, nf = s->dm.nfree;
-  double **vecs[] = {&s->u, &s->x, &s->u_last, &s->u_start, &s->ct.up_c, &s->ct.up_t,
+  double **vecs[] = {&s->u, &s->x, &s->u_last, &s->u_prev, &s->u_start, &s->ct.up_c, &s->ct.up_t,
                      &s->dy.v, &s->dy.acc, &s->dy.v_last, &s->dy.a_last, &s->dy.res_n};
   for (size_t i = 0; i < sizeof vecs / sizeof *vecs; i++) SA_CALLOC(*vecs[i], nd);
   memcpy(s->x, m->xyz, (size_t)nd * sizeof *s->x);
@@ -247,6 +249,7 @@ void fem_solver_destroy(FemSolver **ps) {
   free(s->u);
   free(s->x);
   free(s->u_last);
+  free(s->u_prev);
   free(s->u_start);
   free(s);
   *ps = NULL;
@@ -297,5 +300,40 @@ int fem_solver_check_tangent(FemSolver *s, double h, double *rel_err) {
   free(x0);
   free(xp);
   SA_REQUIRE(rc == 0, SA_ERR_INVERTED, "inverted element during the tangent check");
+  return 0;
+}
+
+int fem_solver_check_potential(FemSolver *s, double p, double h, double *rel_err) {
+  SA_REQUIRE(s->setup_done, SA_ERR_INPUT, "check_potential before setup");
+  int nf = s->dm.nfree, nd = s->ndof;
+  double *v, *xp;
+  SA_CALLOC(v, nf);
+  SA_CALLOC(xp, nd);
+  unsigned long seed = 4242;
+  for (int k = 0; k < nf; k++) {
+    seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+    v[k] = (double)(seed >> 11) / 9007199254740992.0 - 0.5;
+  }
+  AsmBuf *bf = &s->as.rb;
+  double Rv = 0.0, pi[2] = {0, 0};
+  int rc = fem_asm_into(s, bf, s->x, p, 0);
+  for (int d = 0; d < nd && rc == 0; d++)
+    if (s->dm.eq[d] >= 0)
+      Rv += (bf->fint[d] - s->as.fdead[d] - p * bf->q[d]) * v[s->dm.eq[d]];
+  for (int i = 0; i < 2 && rc == 0; i++) {
+    double sgn = i == 0 ? 1.0 : -1.0, wd = 0.0;
+    for (int d = 0; d < nd; d++) {
+      xp[d] = s->x[d] + (s->dm.eq[d] >= 0 ? sgn * h * v[s->dm.eq[d]] : 0.0);
+      wd += s->as.fdead[d] * (xp[d] - s->m->xyz[d]);
+    }
+    rc = fem_asm_into(s, bf, xp, p, 0);
+    pi[i] = bf->energy - p * bf->V - wd;
+  }
+  if (rc) sa_error_clear();
+  *rel_err = fabs(Rv - (pi[0] - pi[1]) / (2 * h)) / fmax(fabs(Rv), 1e-300);
+  free(v);
+  free(xp);
+  SA_REQUIRE(rc == 0, SA_ERR_INVERTED, "inverted element during the potential check");
+  SA_REQUIRE(s->as.ncontrib == 0, SA_ERR_INPUT, "contributors have no potential here");
   return 0;
 }

@@ -76,6 +76,7 @@ typedef struct { /* fem_assemble.c */
 
 typedef struct { /* fem_newton.c */
   double *R, *da, *db, *du, *rhs, *qf, *gf; /* nfree */
+  double *kr, *kz, *kp, *kq;                /* PCG work (nfree) */
   double *u_it;                             /* last accepted Newton iterate (ndof) */
   double p_it;
   int last_sym;   /* symmetric path used at the last factorisation */
@@ -84,6 +85,7 @@ typedef struct { /* fem_newton.c */
   int saw_not_pd; /* a factorisation in the current substep was not positive definite (the
                    * fallback is logged once per substep; CHOLMOD is still tried every time) */
   int lu_substep; /* LU factorisations in the current substep */
+  int extrapolated; /* the substep starts from an extrapolated state (FEM_PREDICT_EXTRAPOLATE) */
   /* the factors held by lin are a tangent of the last converged state (its last Newton
    * iteration), made for a substep of kind (fact_dynamic, fact_dt, fact_alpha): usable as
    * the next predictor (FEM_PREDICT_REUSE) */
@@ -108,6 +110,7 @@ typedef struct { /* fem_continuation.c */
   double dl_keep;    /* increment carried over to the next ramp */
   double slope0;     /* first measured dp/dV (stiffness reference) */
   int fail_not_pd;   /* not positive definite seen since last convergence */
+  int n_static_commits; /* static pressure-only substeps committed in a row (extrapolation) */
   char last_fail[200];
   double static_dt;  /* time a static solve stands for (0: none, velocities 0) */
   FemSolveReport rep;
@@ -135,6 +138,7 @@ struct FemSolver {
   /* state shared by the phases */
   double *u, *x;       /* current displacement and position */
   double *u_last;      /* last converged substep */
+  double *u_prev;      /* the converged substep before it (extrapolating predictor) */
   double *u_start;     /* committed state when the last solve began */
   double p, V, V_ref, time;
   FemSolverStats st;
@@ -174,6 +178,7 @@ int fem_asm_setup(FemSolver *s);
 int fem_asm_into(FemSolver *s, AsmBuf *bf, const double *x, double p, int want_K);
 int fem_asm_newton(FemSolver *s, const double *x, double p, int want_K);
 int fem_asm_readback(FemSolver *s, int want_K);
+void fem_asm_add_load_stiffness(FemSolver *s, const double *x, double scale);
 int fem_asm_candidate_pairs(FemSolver *s, int **pairs, int *npairs); /* [owned] */
 void fem_asm_free(FemAssembly *as);
 
