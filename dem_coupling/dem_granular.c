@@ -179,7 +179,7 @@ static int setup_fem(Run *g) {
   SA_REQUIRE(g->xw_prev && g->xw_cur && g->xw && g->vw && g->f_tri && g->f_sum && g->f_node &&
              g->f_app && g->k_if && g->n_if && g->a_if, SA_ERR_MEMORY, "coupling buffers");
   if (g->sc->coupling.interface_stiffness > 0) {
-    FemContributor c = {"dem interface", NULL, interface_eval, g};
+    FemContributor c = {.name = "dem interface", .eval = interface_eval, .ctx = g};
     SA_CHECK(fem_solver_add_contributor(g->s, &c));
   }
   fem_coupling_surface_gather(g->cs, fem_solver_positions(g->s), g->xw_cur);
