@@ -1,0 +1,39 @@
+#!/bin/sh
+# Coupling interval and Robin interface stiffness, from one poured bed (issue 12, docs/dem.md).
+# The bed is poured, settled and preloaded once; its checkpoint (after the 5 preload steps) is
+# copied into every variant, which resumes from it with its own settings (the settings that
+# matter only after the preload may differ from the base run's). Variants run one after the
+# other (parallel runs on 2 cores distort each other's timings).
+#   bench/dem/interval_study.sh OUT [BEAD_DIAMETER_M] [STROKE_M]
+set -eu
+OUT=$1
+D=${2:-3e-3}
+S=${3:-2e-3}
+EXE=${EXE:-build/apps/softact}
+CASE=cases/granular_bending_dem.ini
+mkdir -p "$OUT"
+if [ ! -f "$OUT/base/checkpoint/state.ckpt" ]; then
+  "$EXE" run $CASE --out "$OUT/base" --set grains.diameter=$D --set piston.stroke=1e-3 \
+    --set coupling.checkpoint_every=5 --set coupling.vtk_every=0 || true
+fi
+run() { # label key=value ...
+  label=$1; shift
+  [ -f "$OUT/$label/summary.ini" ] && return 0
+  rm -rf "$OUT/$label"
+  cp -r "$OUT/base" "$OUT/$label"
+  rm -f "$OUT/$label/bending.csv" "$OUT/$label/summary.ini"
+  sets=""
+  for kv in "$@"; do sets="$sets --set $kv"; done
+  "$EXE" run $CASE --out "$OUT/$label" --set grains.diameter=$D --set piston.stroke=$S \
+    --set coupling.vtk_every=0 --set coupling.checkpoint_every=0 --set coupling.resume=true \
+    $sets || true
+}
+run interval_0.5mm coupling.interval=5e-4
+run interval_0.25mm coupling.interval=2.5e-4
+run interval_0.125mm coupling.interval=1.25e-4
+run k_0.5 coupling.interface_stiffness=0.5
+run k_2 coupling.interface_stiffness=2
+python3 bench/dem/study.py "$OUT" --collect-only --marks 0,0.5,1,1.5,2 \
+  interval_0.5mm:coupling.interval=5e-4 interval_0.25mm:coupling.interval=2.5e-4 \
+  interval_0.125mm:coupling.interval=1.25e-4 k_0.5:coupling.interface_stiffness=0.5 \
+  k_2:coupling.interface_stiffness=2
