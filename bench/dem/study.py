@@ -3,7 +3,7 @@
 collect their bending curves into one table and one plot.
 
   bench/dem/study.py OUTDIR LABEL:key=value,key=value [LABEL:...] [--case CASE] [--exe EXE]
-                     [--collect-only]
+                     [--collect-only] [--marks 0,5,10,15,20,25]
 
 Each variant runs `softact run CASE --out OUTDIR/LABEL --set key=value ...` unless
 OUTDIR/LABEL/summary.ini already exists (a study can be interrupted and continued; a stopped
@@ -41,6 +41,9 @@ def main():
         i = args.index("--case"); case = args[i + 1]; del args[i:i + 2]
     if "--exe" in args:
         i = args.index("--exe"); exe = args[i + 1]; del args[i:i + 2]
+    marks = [0, 5, 10, 15, 20, 25]
+    if "--marks" in args:
+        i = args.index("--marks"); marks = [float(x) for x in args[i + 1].split(",")]; del args[i:i + 2]
     if "--collect-only" in args:
         args.remove("--collect-only"); collect = True
     if len(args) < 2:
@@ -59,10 +62,9 @@ def main():
             cmd += ["--set", s]
         print("study:", " ".join(cmd), file=sys.stderr, flush=True)
         subprocess.run(cmd)
-    marks = [0, 5, 10, 15, 20, 25]
     md = ["| variant | settings | status | stroke [mm] | "
-          + " | ".join(f"angle@{m}" for m in marks) + " | "
-          + " | ".join(f"F@{m} [N]" for m in marks)
+          + " | ".join(f"angle@{m:g}" for m in marks) + " | "
+          + " | ".join(f"F@{m:g} [N]" for m in marks)
           + " | overlap | I_max | wall [s] | DEM [s] | exch/DEM | FEM/DEM |",
           "|" + "---|" * (10 + 2 * len(marks))]
     plots = []
