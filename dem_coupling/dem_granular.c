@@ -96,17 +96,20 @@ static int interface_eval(void *ctx, FemAsmView *v) {
   const double *x = fem_asm_positions(v);
   const int *nd = fem_coupling_surface_nodes(g->cs);
   int tangent = fem_asm_wants_tangent(v);
+  double kt_frac = g->sc->coupling.interface_tangential;
   for (int i = 0; i < g->nv; i++) {
-    double k = g->k_if[i];
+    double k = g->k_if[i], kt = kt_frac * k;
     if (k <= 0) continue;
     const double *n = g->n_if + 3 * i, *a = g->a_if + 3 * i, *xi = x + 3 * nd[i];
-    double s = k * (n[0] * (xi[0] - a[0]) + n[1] * (xi[1] - a[1]) + n[2] * (xi[2] - a[2]));
-    double f[3] = {s * n[0], s * n[1], s * n[2]};
+    /* K = kt I + (k - kt) n n^T: k along the normal, kt across it */
+    double d[3] = {xi[0] - a[0], xi[1] - a[1], xi[2] - a[2]};
+    double s = (k - kt) * (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]);
+    double f[3] = {kt * d[0] + s * n[0], kt * d[1] + s * n[1], kt * d[2] + s * n[2]};
     fem_asm_add_force(v, nd[i], f);
     if (tangent) {
       double K[9];
       for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++) K[3 * r + c] = k * n[r] * n[c];
+        for (int c = 0; c < 3; c++) K[3 * r + c] = (k - kt) * n[r] * n[c] + (r == c ? kt : 0);
       fem_asm_add_block(v, nd[i], nd[i], K);
     }
   }

@@ -73,6 +73,9 @@ static const SaParam coupling_params[] = {
      "Robin coupling: the FEM wall carries, per node, this factor times the Hertz contact "
      "stiffness of its wall forces, anchored at the wall position the DEM saw (the bed's "
      "linearised reaction to further wall motion; 0 = plain staggered; docs/dem.md)"},
+    {"interface_tangential", SA_PARAM_REAL, P(interface_tangential), "-", "0", 0, 1, 0, NULL,
+     "tangential stiffness of the Robin interface as a fraction of its normal one (the bed's "
+     "grip on the wall; 0 = normal springs only; docs/dem.md)"},
     {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,
      "mass-proportional (Rayleigh) damping of the silicone in the dynamic scheme"},
     {"sample_every", SA_PARAM_INT, P(sample_every), "-", "1", 1, 100000, 0, NULL,

@@ -23,7 +23,7 @@ typedef struct {
 } DemPistonCase;
 
 typedef struct {
-  double interval, relaxation, damping, interface_stiffness;
+  double interval, relaxation, damping, interface_stiffness, interface_tangential;
   int sample_every, gravity, vtk_every, checkpoint_every, resume;
   char scheme[SA_STR_MAX];
   char wall_surface[SA_STR_MAX], fixed_surface[SA_STR_MAX], tip_surface[SA_STR_MAX];

@@ -33,7 +33,9 @@ run interval_0.25mm coupling.interval=2.5e-4
 run interval_0.125mm coupling.interval=1.25e-4
 run k_0.5 coupling.interface_stiffness=0.5
 run k_2 coupling.interface_stiffness=2
+run normal_only_0.125mm coupling.interval=1.25e-4 coupling.interface_tangential=0
 python3 bench/dem/study.py "$OUT" --collect-only --marks 0,0.5,1,1.5,2 \
   interval_0.5mm:coupling.interval=5e-4 interval_0.25mm:coupling.interval=2.5e-4 \
   interval_0.125mm:coupling.interval=1.25e-4 k_0.5:coupling.interface_stiffness=0.5 \
-  k_2:coupling.interface_stiffness=2
+  k_2:coupling.interface_stiffness=2 \
+  normal_only_0.125mm:coupling.interval=1.25e-4,coupling.interface_tangential=0
