@@ -240,6 +240,23 @@ static void elem_work(FemSolver *s, AsmBuf *bf, int e, const double *x, int want
 
 /* f_int, q, V, g (all dofs) and, if want_K, the tangent values over the free dofs at x with
  * pressure p. Returns SA_ERR_INVERTED if an element inverted (state otherwise undefined). */
+/* val += w * Ke, Ke the 3nfn x 3nfn block of pressure face f, through the face's node-pair slots
+ * (the pattern's positions of its 3x3 blocks; -1 for constrained dofs). */
+static void scatter_face_block(const FemSolver *s, int f, const double *Ke, double w, double *val) {
+  int nfn = s->as.nfn, nfd = 3 * nfn;
+  const int *fp = s->dm.fpair + (size_t)f * nfn * nfn;
+  for (int a = 0; a < nfn; a++)
+    for (int b = 0; b < nfn; b++) {
+      const int *sl = s->dm.slot9 + (size_t)fp[a * nfn + b] * 9;
+      const double *Kab = Ke + (size_t)(3 * a) * nfd + 3 * b;
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+          int k = sl[3 * i + j];
+          if (k >= 0) val[k] += w * Kab[i * nfd + j];
+        }
+    }
+}
+
 static int assemble_once(FemSolver *s, AsmBuf *bf, const double *x, double p, int want_K) {
   double t0 = sa_time_now();
   memset(bf->fint, 0, (size_t)s->ndof * sizeof *bf->fint);
@@ -264,7 +281,7 @@ static int assemble_once(FemSolver *s, AsmBuf *bf, const double *x, double p, in
   memset(bf->q, 0, (size_t)s->ndof * sizeof *bf->q);
   memset(bf->gv, 0, (size_t)s->ndof * sizeof *bf->gv);
   double V = 0.0;
-  int nfn = s->as.nfn, nfd = 3 * nfn;
+  int nfn = s->as.nfn;
   for (int f = 0; f < s->as.npf; f++) {
     const int *c = s->as.pf + (size_t)f * nfn;
     double xf[18], fe[18], Ke[324], dv[18];
@@ -278,17 +295,7 @@ static int assemble_once(FemSolver *s, AsmBuf *bf, const double *x, double p, in
         bf->gv[3 * c[a] + k] += dv[3 * a + k];
       }
     if (!want_K || p == 0.0) continue;
-    const int *fp = s->dm.fpair + (size_t)f * nfn * nfn;
-    for (int a = 0; a < nfn; a++)
-      for (int b = 0; b < nfn; b++) {
-        const int *sl = s->dm.slot9 + (size_t)fp[a * nfn + b] * 9;
-        const double *Kab = Ke + (size_t)(3 * a) * nfd + 3 * b;
-        for (int i = 0; i < 3; i++)
-          for (int j = 0; j < 3; j++) {
-            int k = sl[3 * i + j];
-            if (k >= 0) bf->val[k] += p * Kab[i * nfd + j];
-          }
-      }
+    scatter_face_block(s, f, Ke, p, bf->val);
   }
   bf->V = V;
   int crc = s->as.ncontrib ? eval_contributors(s, bf, x, want_K) : 0;
@@ -338,7 +345,7 @@ int fem_asm_newton(FemSolver *s, const double *x, double p, int want_K) {
  * tangent values: with scale = -(1 - beta) p it turns K_int + p K_q into K_int + beta p K_q
  * (FEM_INDEFINITE_MODIFY). Same face loop as the assembly; no allocation. */
 void fem_asm_add_load_stiffness(FemSolver *s, const double *x, double scale) {
-  int nfn = s->as.nfn, nfd = 3 * nfn;
+  int nfn = s->as.nfn;
   double t0 = sa_time_now();
   for (int f = 0; f < s->as.npf; f++) {
     const int *c = s->as.pf + (size_t)f * nfn;
@@ -346,17 +353,7 @@ void fem_asm_add_load_stiffness(FemSolver *s, const double *x, double scale) {
     for (int a = 0; a < nfn; a++)
       for (int k = 0; k < 3; k++) xf[3 * a + k] = x[3 * c[a] + k];
     fem_face_pressure(nfn, xf, 1.0, fe, Ke);
-    const int *fp = s->dm.fpair + (size_t)f * nfn * nfn;
-    for (int a = 0; a < nfn; a++)
-      for (int b = 0; b < nfn; b++) {
-        const int *sl = s->dm.slot9 + (size_t)fp[a * nfn + b] * 9;
-        const double *Kab = Ke + (size_t)(3 * a) * nfd + 3 * b;
-        for (int i = 0; i < 3; i++)
-          for (int j = 0; j < 3; j++) {
-            int k = sl[3 * i + j];
-            if (k >= 0) s->as.val[k] += scale * Kab[i * nfd + j];
-          }
-      }
+    scatter_face_block(s, f, Ke, scale, s->as.val);
   }
   s->st.t_assemble += sa_time_now() - t0;
 }
