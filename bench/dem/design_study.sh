@@ -1,0 +1,55 @@
+#!/bin/sh
+# Design and limit variants of the FEM-DEM scene (issue 12, docs/dem.md): rings on/off, a
+# frictionless barrel and piston, a frictionless fill, a piston ten times faster. A bed is
+# poured, settled and preloaded once per set of grain properties (checkpoint after the 5
+# preload steps; a checkpoint refuses other grain properties, so a frictionless barrel or fill
+# is poured anew); every variant copies its bed and resumes with its own settings. Rings off = the ring region made of
+# silicone (same mesh, so the FEM checkpoint fits; the rings are flush with the outer surface,
+# so this is exactly the design without rings). Runs one after the other.
+#   bench/dem/design_study.sh OUT [BEAD_DIAMETER_M] [STROKE_M] [STROKE_FRICTIONLESS_BARREL_M]
+set -eu
+OUT=$1
+D=${2:-3e-3}
+S=${3:-2e-3}
+S2=${4:-4e-3}   # the frictionless barrel goes further
+EXE=${EXE:-build/apps/softact}
+CASE=cases/granular_bending_dem.ini
+mkdir -p "$OUT"
+pour() { # bed key=value ...   (grain properties of the pour)
+  bed=$1; shift
+  [ -f "$OUT/$bed/checkpoint/state.ckpt" ] && return 0
+  sets=""
+  for kv in "$@"; do sets="$sets --set $kv"; done
+  # shellcheck disable=SC2086
+  "$EXE" run $CASE --out "$OUT/$bed" --set grains.diameter=$D --set piston.stroke=1e-3 \
+    --set coupling.checkpoint_every=5 --set coupling.vtk_every=0 $sets || true
+}
+run() { # bed label stroke key=value ...
+  bed=$1; label=$2; stroke=$3; shift 3
+  [ -f "$OUT/$label/summary.ini" ] && return 0
+  rm -rf "$OUT/$label"
+  cp -r "$OUT/$bed" "$OUT/$label"
+  rm -f "$OUT/$label/bending.csv" "$OUT/$label/summary.ini"
+  sets=""
+  for kv in "$@"; do sets="$sets --set $kv"; done
+  # shellcheck disable=SC2086
+  "$EXE" run $CASE --out "$OUT/$label" --set grains.diameter=$D --set piston.stroke=$stroke \
+    --set coupling.vtk_every=0 --set coupling.checkpoint_every=0 --set coupling.resume=true \
+    $sets || true
+}
+NORINGS='material.regions=silicone:silicone,strain_limit:limit,reinforcement:silicone'
+NOBARREL='grains.friction_piston=0'
+NOFRICTION='grains.friction=0 grains.friction_wall=0 grains.friction_piston=0 grains.rolling_friction=0'
+pour base
+run base reference "$S"
+run base rings_off "$S" "$NORINGS"
+run base speed_x10 "$S" piston.speed=0.2
+pour base_barrel_frictionless $NOBARREL
+run base_barrel_frictionless barrel_frictionless "$S2" $NOBARREL
+run base_barrel_frictionless barrel_frictionless_rings_off "$S2" $NOBARREL "$NORINGS"
+pour base_fill_frictionless $NOFRICTION
+run base_fill_frictionless fill_frictionless "$S" $NOFRICTION
+python3 bench/dem/study.py "$OUT" --collect-only --marks 0,0.5,1,1.5,2,3,4 \
+  reference: rings_off:rings=off barrel_frictionless:friction_piston=0 \
+  barrel_frictionless_rings_off:friction_piston=0,rings=off speed_x10:piston.speed=0.2 \
+  fill_frictionless:all_friction=0
