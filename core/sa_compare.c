@@ -74,6 +74,7 @@ typedef struct {
   double *volrel; /* cavity volume change / initial [-], NaN if the run has none */
   double *p;      /* pressure run: cavity pressure [Pa]; NULL otherwise */
   double x_end;   /* pressure run: x of its largest volume change (before clipping) */
+  int clipped;    /* pressure run: its last point is interpolated at the granular runs' end */
 } Curve;
 
 typedef struct {
@@ -297,6 +298,7 @@ static void clip_pressure(Curve *p, double x_max) {
       p->p[m] = p->p[m - 1] + t * (p->p[m] - p->p[m - 1]);
       p->volrel[m] = p->volrel[m - 1] + t * (p->volrel[m] - p->volrel[m - 1]);
       p->x[m] = xs;
+      p->clipped = 1;
       m++;
     }
   }
@@ -383,15 +385,17 @@ static int write_curve(const SaRun *run, int k, const Curve *c) {
   char name[64], path[SA_STR_MAX];
   snprintf(name, sizeof name, "curve_%s.csv", cmp_key[k]);
   SA_CHECK(sa_run_path(run, name, path));
+  /* run_state (pressure run): 1 = a state of the run, 0 = interpolated at the granular end */
   const char *names[] = {"piston_displacement_mm", "bending_angle", "piston_force",
-                         "volume_change_rel", "pressure"};
-  const char *units[] = {"mm", "deg", "N", "-", "Pa"};
-  int nc = c->p ? 5 : 4;
+                         "volume_change_rel", "pressure", "run_state"};
+  const char *units[] = {"mm", "deg", "N", "-", "Pa", "-"};
+  int nc = c->p ? 6 : 4;
   SaCsv *t = NULL;
   SA_CHECK(sa_csv_open(path, nc, names, units, &t));
   int rc = 0;
   for (int i = 0; i < c->n && !rc; i++) {
-    double row[5] = {1e3 * c->x[i], c->angle[i], c->force[i], c->volrel[i], c->p ? c->p[i] : 0};
+    double row[6] = {1e3 * c->x[i], c->angle[i],  c->force[i], c->volrel[i], c->p ? c->p[i] : 0,
+                     !(c->clipped && i == c->n - 1)};
     rc = sa_csv_row_gaps(t, row);
   }
   if (rc) {
@@ -404,9 +408,9 @@ static int write_curve(const SaRun *run, int k, const Curve *c) {
 
 /* Both plots from the curve_*.csv files beside them (the scripts stay relocatable). */
 static int make_plots(const SaCompareScene *s, const SaRun *run) {
-  static const char *const style[CMP_N] = {"linespoints lw 2 pt 7 ps 1.0 lc rgb 'dark-red'",
-                                           "linespoints lw 2 pt 5 ps 0.9 lc rgb 'dark-green'",
-                                           "linespoints lw 2 dt 2 pt 6 ps 1.1 lc rgb 'blue'"};
+  static const char *const line[CMP_N] = {"lw 2 lc rgb 'dark-red'", "lw 2 lc rgb 'dark-green'",
+                                          "lw 2 dt 2 lc rgb 'blue'"};
+  static const char *const point[CMP_N] = {"pt 7 ps 1.0", "pt 5 ps 0.9", "pt 6 ps 1.1"};
   const char *ycol[2] = {"2", "3"};
   const char *png[2] = {"bending_comparison.png", "piston_force_comparison.png"};
   const char *title[2] = {"Bending angle against piston displacement",
@@ -430,8 +434,15 @@ static int make_plots(const SaCompareScene *s, const SaRun *run) {
         snprintf(buf, sizeof buf, fig ? "%s: piston force p pi r^2" : "%s: cavity volume change = pi r^2 x", lab);
         lab = buf;
       }
-      fprintf(f, "%s'curve_%s.csv' using 1:%s with %s title '%s'", first ? "" : ", \\\n     ",
-              cmp_key[k], ycol[fig], style[k], lab);
+      const char *sep = first ? "" : ", \\\n     ";
+      if (k == CMP_PRESSURE) /* markers only on the run's own states, not the interpolated end */
+        fprintf(f, "%s'curve_%s.csv' using 1:%s with lines %s notitle, \\\n     "
+                "'' using 1:($6 > 0 ? $%s : 1/0) with points %s %s notitle, \\\n     "
+                "NaN with linespoints %s %s title '%s'", sep, cmp_key[k], ycol[fig], line[k],
+                ycol[fig], point[k], line[k], line[k], point[k], lab);
+      else
+        fprintf(f, "%s'curve_%s.csv' using 1:%s with linespoints %s %s title '%s'", sep,
+                cmp_key[k], ycol[fig], line[k], point[k], lab);
       first = 0;
     }
     fputc('\n', f);

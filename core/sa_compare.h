@@ -24,7 +24,8 @@
  * curves exist; each curve interpolated linearly in x there; differences MC - DEM,
  * pressure - DEM, pressure - MC in deg and relative to the second; an empty field where a
  * curve does not reach), curve_dem.csv / curve_mc.csv / curve_pressure.csv (each curve at its
- * own sample points, in mm: the plotted data), bending_comparison.png,
+ * own sample points, in mm: the plotted data; the pressure curve is cut at the granular runs'
+ * largest displacement, its interpolated end marked run_state = 0), bending_comparison.png,
  * piston_force_comparison.png (+ .gp), summary.ini, the table in softact.log. */
 #ifndef SA_COMPARE_H
 #define SA_COMPARE_H

@@ -155,6 +155,8 @@ with tempfile.TemporaryDirectory() as tmp:
         last = rows[-1]
         check("two: pressure curve ends at the DEM's 3 mm", last["piston_displacement_mm"], 3.0)
         check("two: its angle there", last["bending_angle"], 2e7 * A * 3e-3)
+        check("two: marked as interpolated (run_state 0)", last["run_state"], 0.0)
+        check("two: the states before it are the run's", rows[-2]["run_state"], 1.0)
         names, rows = read_table(os.path.join(out, "comparison.csv"))
         if any(r["angle_mc"] is not None for r in rows):
             fails.append("two: MC column not empty without an mc input")
