@@ -41,6 +41,7 @@ static const SaModule *const modules[] = {
 #ifdef SOFTACT_HAVE_DEM
     &dem_module,
 #endif
+    &sa_compare_module,
     NULL};
 
 static void usage(FILE *f) {

@@ -31,4 +31,8 @@ typedef struct {
   void (*destroy)(void **scene);
 } SaModule;
 
+/* Scenes core provides itself (registered in apps/softact.c like every module's):
+ * [compare], the comparison of earlier runs' bending curves (sa_compare.h). */
+extern const SaModule sa_compare_module;
+
 #endif
