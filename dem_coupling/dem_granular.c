@@ -257,9 +257,7 @@ static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z
       .dt = g->dt, .dt_safety = 0.35, .gravity = {0, 0, sc->coupling.gravity ? -G_ACC : 0},
       .skin = sc->dem.skin * g->d, .seed = sc->dem.seed};
   /* the pour column: the bed volume at a loose 0.3 packing above the barrel top */
-  double V_bore = M_PI * R_BORE * R_BORE * (80e-3 + gr->fill_height);
-  if (!resume)
-    g->n_grains = (int)ceil(1.04 * gr->packing_guess * V_bore / (M_PI * pow(g->d, 3) / 6));
+  if (!resume) g->n_grains = (int)dem_scene_pour_count(gr); /* <= DEM_MAX_GRAINS (dem_check) */
   /* the pour column above the barrel: a grain column of height h takes sqrt(2 h / g) to fall,
    * so fewer, taller rounds pour faster (the time per grain falls as 1 / sqrt(h)); 160 mm
    * holds ~80 % of the 2 mm bed at the insertion packing below */
