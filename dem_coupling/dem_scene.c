@@ -85,7 +85,8 @@ static const SaParam coupling_params[] = {
      "gravity (-z, 9.81 m/s^2) on grains and silicone"},
     {"checkpoint_every", SA_PARAM_INT, P(checkpoint_every), "-", "20", 0, 100000, 0, NULL,
      "coupling steps between checkpoints in <out>/checkpoint (0 = only when interrupted); a "
-     "run stopped by SIGINT/SIGTERM always writes one"},
+     "run stopped by a signal between coupling steps writes one; inside a step it stops after "
+     "the current DEM chunk or Newton iteration and keeps the last one"},
     {"resume", SA_PARAM_BOOL, P(resume), "-", "0", 0, 0, 0, NULL,
      "continue from <out>/checkpoint of an earlier run of the same case into the same --out "
      "folder, instead of pouring (same result as a run that was never stopped)"},

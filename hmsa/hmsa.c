@@ -637,7 +637,9 @@ static int run_history(const HmsaScene *s, HmsaVariant *v, const SaRun *run, Sum
     double tau = k * s->p.dt_out;
     if (k > 0) rc = hmsa_integrator_advance(it, tau, y);
     if (rc) break;
-    if (k % 1000 == 0 && sa_interrupted()) { rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted"); break; }
+    /* every row: the check is a flag read; with large steps many rows come from dense output
+     * (the integrator polls per step) */
+    if (sa_interrupted()) { rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted"); break; }
     row[0] = tau, row[1] = y[0], row[2] = y[1], row[3] = hmsa_lambda3(y), row[4] = hmsa_dlambda3(y);
     if (zener) row[5] = y[2];
     rc = sa_csv_row(t, row);
@@ -899,7 +901,8 @@ static int run_poincare(const HmsaScene *s, HmsaVariant *v, const SaRun *run, Su
     for (int i = 0; i < n; i++) y[i] = x[(size_t)(np - 1) * n + i];
     for (int k = 0; !rc && k <= N; k++) {
       double tau = tau0 + (double)k * T / per;
-      if (k > 0) rc = hmsa_integrator_advance(it, tau, y);
+      if (sa_interrupted()) rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted");
+      if (!rc && k > 0) rc = hmsa_integrator_advance(it, tau, y);
       double row[6] = {tau, y[0], y[1], hmsa_lambda3(y), hmsa_dlambda3(y), zener ? y[2] : 0};
       if (!rc) rc = sa_csv_row(t, row);
     }

@@ -62,7 +62,7 @@ int hmsa_steady_amplitude(HmsaIntegrator *it, const HmsaModel *m, const HmsaStea
   lv[0] = y[0];
   int rc = 0;
   for (int j = 1; j <= nm; j++) {
-    if (j % sp == 0 && sa_interrupted()) { rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted"); break; }
+    if (sa_interrupted()) { rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted"); break; }
     /* every period end is computed as an integer multiple of T (no drift of the phase) */
     double t = (j % sp == 0) ? (ntr + j / sp) * T : ntr * T + (double)j * T / sp;
     rc = hmsa_integrator_advance(it, t, y);
@@ -99,6 +99,8 @@ int hmsa_settling_time(const HmsaModel *m, const HmsaIntegratorOptions *io, doub
   int outside_seen = 0;
   for (long k = 1; !rc && k <= N; k++) {
     double t = k * dt;
+    /* a large step serves many grid points from dense output without stepping (and polling) */
+    if (sa_interrupted()) { rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted"); break; }
     rc = hmsa_integrator_advance(it, t, y);
     if (rc) break;
     if (fabs(hmsa_lambda3(y) - lambda3_eq) > tol) {

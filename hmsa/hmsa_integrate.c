@@ -22,6 +22,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "sa_error.h"
+#include "sa_output.h"
 
 struct HmsaIntegrator {
   const HmsaModel *m;
@@ -375,6 +376,10 @@ int hmsa_integrator_advance(HmsaIntegrator *it, double tout, double *yout) {
   int retries = 0;
   N_Vector ytmp = it->y;
   while (it->t < tout) {
+    /* one step takes microseconds, but a stiff problem under erk needs millions of them per
+     * output interval: polling here lets every caller answer a signal at once */
+    if (sa_interrupted())
+      return SA_ERROR(SA_ERR_INTERRUPTED, "interrupted at tau = %g", it->t);
     SA_REQUIRE(nsteps < it->o.max_steps, SA_ERR_NOT_CONVERGED,
                "%s needed more than %ld steps to reach tau = %g (now at %g)",
                hmsa_method_name(it->active), it->o.max_steps, tout, it->t);
