@@ -350,8 +350,8 @@ static int foot_run(void *scene, SaRun *run) {
       rc = fem_solver_set_prescribed(t.s, t.foot->nnodes, t.foot->nodes, 2, -d);
       if (!rc) rc = fem_solver_solve(t.s);
       if (rc) {
-        sa_log(SA_LOG_ERROR, "fem", "settlement ramp stopped at step %d; results up to step %d "
-               "are written", t.step, t.step - 1);
+        sa_log(rc == SA_ERR_INTERRUPTED ? SA_LOG_WARN : SA_LOG_ERROR, "fem", "settlement ramp "
+               "stopped at step %d; results up to step %d are written", t.step, t.step - 1);
         break;
       }
       rc = output_step(&t, t.step == F->steps);
