@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <pthread.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -147,6 +148,7 @@ int sa_signals_child_add(long pid, const char *temp) {
     if (!sa_children[i].pid) slot = i;
   if (slot >= 0) {
     snprintf(sa_children[slot].temp, sizeof sa_children[slot].temp, "%s", temp ? temp : "");
+    atomic_thread_fence(memory_order_seq_cst); /* the handler sees the name before the pid */
     sa_children[slot].pid = (sig_atomic_t)pid;
   }
   pthread_mutex_unlock(&sa_files_lock);
@@ -170,6 +172,7 @@ static void sa_on_signal(int sig) {
     for (int i = 0; i < SA_CHILD_MAX; i++) {
       pid_t pid = (pid_t)sa_children[i].pid;
       if (pid <= 0) continue;
+      atomic_thread_fence(memory_order_seq_cst);
       kill(pid, SIGKILL);
       while (waitpid(pid, NULL, 0) < 0 && errno == EINTR) {
       }

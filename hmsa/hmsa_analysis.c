@@ -35,11 +35,8 @@ int hmsa_steady_amplitude(HmsaIntegrator *it, const HmsaModel *m, const HmsaStea
                           const double *y0, HmsaSteady *out) {
   double T = hmsa_model_period(m);
   SA_REQUIRE(T > 0, SA_ERR_INPUT, "steady amplitude needs a periodic load with omega > 0");
-  int ntr = o->transient_periods;
-  int ntau = (int)ceil(o->transient_tau / T - 1e-12);
-  if (ntau > ntr) ntr = ntau;
-  /* the product is checked with the case (hmsa.c); a caller that skipped it gets an error,
-   * not a wrapped int */
+  /* the products are checked with the case (hmsa.c); a caller that skipped that gets an
+   * error, not a wrapped int */
   SA_REQUIRE(o->samples_per_period > 0 && o->measure_periods > 0 &&
                  (long long)o->measure_periods * o->samples_per_period < INT_MAX / 2,
              SA_ERR_INPUT, "steady amplitude: %d measure periods x %d samples per period do not fit",
@@ -47,6 +44,9 @@ int hmsa_steady_amplitude(HmsaIntegrator *it, const HmsaModel *m, const HmsaStea
   SA_REQUIRE(o->transient_tau / T < INT_MAX / 2 - o->measure_periods, SA_ERR_INPUT,
              "steady amplitude: transient_tau = %g is %g periods", o->transient_tau,
              o->transient_tau / T);
+  int ntr = o->transient_periods;
+  int ntau = (int)ceil(o->transient_tau / T - 1e-12);
+  if (ntau > ntr) ntr = ntau;
   int sp = o->samples_per_period, nm = o->measure_periods * sp;
   int n = hmsa_model_neq(m);
   double y[HMSA_NEQ_MAX];
