@@ -215,7 +215,6 @@ static int run_case(const Args *a) {
   if (!rc) rc = sa_file_open(path, &lf);
   if (rc) goto done;
   sa_log_set_file(sa_file_stream(lf));
-  sa_signals_install();
   sa_log(SA_LOG_INFO, "core", "softact %s: %s (%s scene) -> %s", SOFTACT_VERSION, a->case_path, m->name,
          run.out_dir);
   double t0 = sa_time_now();
@@ -250,6 +249,9 @@ done:
 }
 
 int main(int argc, char **argv) {
+  /* Handlers first: a signal that arrives while the case loads (start-up takes ~0.25 s) must
+   * stop the run cleanly, not kill the process with the default action. */
+  sa_signals_install();
   setvbuf(stderr, NULL, _IOLBF, 0);
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {

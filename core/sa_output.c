@@ -4,9 +4,11 @@
 #include <errno.h>
 #include <pthread.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "sa_error.h"
@@ -130,9 +132,52 @@ void sa_file_abort_all(void) {
   pthread_mutex_unlock(&sa_files_lock);
 }
 
+/* Child processes (gnuplot) that must not outlive a second signal: the handler kills and
+ * reaps them and removes the temporary each was writing, else the child would write it after
+ * softact has gone. Slots are claimed under sa_files_lock; the handler only reads them. */
+#define SA_CHILD_MAX 8
+static struct {
+  volatile sig_atomic_t pid; /* 0: free */
+  char temp[SA_STR_MAX + 64];
+} sa_children[SA_CHILD_MAX];
+
+int sa_signals_child_add(long pid, const char *temp) {
+  pthread_mutex_lock(&sa_files_lock);
+  int slot = -1;
+  for (int i = 0; i < SA_CHILD_MAX && slot < 0; i++)
+    if (!sa_children[i].pid) slot = i;
+  if (slot >= 0) {
+    snprintf(sa_children[slot].temp, sizeof sa_children[slot].temp, "%s", temp ? temp : "");
+    atomic_thread_fence(memory_order_seq_cst); /* the handler sees the name before the pid */
+    sa_children[slot].pid = (sig_atomic_t)pid;
+  }
+  pthread_mutex_unlock(&sa_files_lock);
+  return slot;
+}
+
+void sa_signals_child_remove(int slot) {
+  if (slot < 0 || slot >= SA_CHILD_MAX) return;
+  pthread_mutex_lock(&sa_files_lock);
+  sa_children[slot].pid = 0;
+  pthread_mutex_unlock(&sa_files_lock);
+}
+
 static void sa_on_signal(int sig) {
   if (sa_signal_seen) {
-    /* Second signal: the user insists. Remove temporaries and leave at once. */
+    /* SIGPIPE after the first signal comes from our own writes to a closed stderr (the
+     * reader went away), not from a user who insists: keep shutting down cleanly. */
+    if (sig == SIGPIPE) return;
+    /* Second signal: the user insists. End the children (a gnuplot left running would write
+     * its temporary after we are gone), remove temporaries and leave at once. */
+    for (int i = 0; i < SA_CHILD_MAX; i++) {
+      pid_t pid = (pid_t)sa_children[i].pid;
+      if (pid <= 0) continue;
+      atomic_thread_fence(memory_order_seq_cst);
+      kill(pid, SIGKILL);
+      while (waitpid(pid, NULL, 0) < 0 && errno == EINTR) {
+      }
+      if (sa_children[i].temp[0]) unlink(sa_children[i].temp);
+    }
     for (SaFile *f = sa_open_files; f; f = f->next) unlink(f->temp);
     static const char msg[] = "\nsoftact: second signal, stopped at once\n";
     ssize_t rc = write(2, msg, sizeof msg - 1);
@@ -142,13 +187,18 @@ static void sa_on_signal(int sig) {
   sa_signal_seen = sig;
 }
 
+/* SIGHUP (terminal closed) and SIGPIPE (stderr piped into a reader that quit, e.g. `| head`)
+ * end a run like SIGINT/SIGTERM: the results computed so far are committed. Without a handler
+ * they would kill the process and leave the temporaries. With SIGPIPE handled, a write to a
+ * closed pipe fails with EPIPE instead of killing us; stdio then just records the error. */
 void sa_signals_install(void) {
+  static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = sa_on_signal;
   sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, NULL);
-  sigaction(SIGTERM, &sa, NULL);
+  for (size_t i = 0; i < sizeof sigs / sizeof *sigs; i++) sigaddset(&sa.sa_mask, sigs[i]);
+  for (size_t i = 0; i < sizeof sigs / sizeof *sigs; i++) sigaction(sigs[i], &sa, NULL);
 }
 
 int sa_interrupted(void) { return sa_signal_seen != 0; }

@@ -5,9 +5,11 @@
  * target, so a reader never sees a truncated result. Open temporaries are registered: a
  * failed run (sa_file_abort_all, called by main) or a second signal removes them.
  *
- * Signals: sa_signals_install() makes SIGINT/SIGTERM set a flag; long loops poll
- * sa_interrupted(), commit what they computed, and return SA_ERR_INTERRUPTED. A second
- * signal removes open temporaries and exits at once with status 3. */
+ * Signals: sa_signals_install() makes SIGINT/SIGTERM/SIGHUP/SIGPIPE set a flag; long loops
+ * poll sa_interrupted() (often enough to answer within about a second), commit what they
+ * computed, and return SA_ERR_INTERRUPTED. A second signal (not SIGPIPE, which our own writes
+ * to a closed stderr raise) kills and reaps registered children, removes their and our open
+ * temporaries and exits at once with status 3. */
 #ifndef SA_OUTPUT_H
 #define SA_OUTPUT_H
 
@@ -23,8 +25,13 @@ void sa_file_abort(SaFile **f);                   /* close, remove temporary; *f
 void sa_file_abort_all(void);                     /* remove every open temporary */
 
 void sa_signals_install(void);
-int sa_interrupted(void);                         /* non-zero once SIGINT/SIGTERM arrived */
+int sa_interrupted(void);                         /* non-zero once a signal arrived */
 int sa_interrupt_signal(void);                    /* which signal (0 if none) */
+/* A child process pid [in] writing temporary file temp [in, copied; may be NULL] is killed,
+ * reaped and its temporary removed by a second signal. Returns a slot (-1: table full, the
+ * child is then not watched) for sa_signals_child_remove, to call once the child is reaped. */
+int sa_signals_child_add(long pid, const char *temp);
+void sa_signals_child_remove(int slot);
 
 /* mkdir -p. */
 int sa_mkdir_p(const char *path);

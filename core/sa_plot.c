@@ -87,9 +87,11 @@ static int sa_plot_find_gnuplot(char *buf, size_t size) {
 }
 
 /* Runs argv with cwd dir, stdin /dev/null, stdout+stderr captured; kills it after timeout s.
+ * temp [may be NULL]: the file the child writes, removed along with the child by a second
+ * signal (sa_signals_child_add).
  * Returns 0 when it ran to the end (r->status), -1 with errno-ish text in r->out otherwise. */
 static int sa_plot_exec(const char *exe, const char *dir, char *const argv[], double timeout,
-                        SaPlotRun *r) {
+                        const char *temp, SaPlotRun *r) {
   r->status = -1;
   r->len = 0;
   r->out[0] = 0;
@@ -100,14 +102,26 @@ static int sa_plot_exec(const char *exe, const char *dir, char *const argv[], do
   }
   fcntl(fd[0], F_SETFD, FD_CLOEXEC);
   fcntl(fd[1], F_SETFD, FD_CLOEXEC);
+  /* the termination signals stay blocked until the child is registered, so a second signal
+   * cannot fall between fork and registration and leave an unwatched child */
+  sigset_t block, old;
+  sigemptyset(&block);
+  sigaddset(&block, SIGINT);
+  sigaddset(&block, SIGTERM);
+  sigaddset(&block, SIGHUP);
+  sigaddset(&block, SIGPIPE);
+  pthread_sigmask(SIG_BLOCK, &block, &old);
   pid_t pid = fork();
   if (pid < 0) {
-    snprintf(r->out, sizeof r->out, "fork: %s", strerror(errno));
+    int e = errno;
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    snprintf(r->out, sizeof r->out, "fork: %s", strerror(e));
     close(fd[0]);
     close(fd[1]);
     return -1;
   }
   if (pid == 0) {
+    sigprocmask(SIG_SETMASK, &old, NULL); /* exec keeps the mask: gnuplot gets the caller's */
     int nul = open("/dev/null", O_RDONLY);
     if (nul >= 0) dup2(nul, STDIN_FILENO);
     dup2(fd[1], STDOUT_FILENO);
@@ -116,6 +130,8 @@ static int sa_plot_exec(const char *exe, const char *dir, char *const argv[], do
     execv(exe, argv);
     _exit(127);
   }
+  int slot = sa_signals_child_add((long)pid, temp);
+  pthread_sigmask(SIG_SETMASK, &old, NULL);
   close(fd[1]);
   double t_end = sa_time_now() + timeout;
   int timed_out = 0;
@@ -145,6 +161,7 @@ static int sa_plot_exec(const char *exe, const char *dir, char *const argv[], do
   int st = 0;
   while (waitpid(pid, &st, 0) < 0)
     if (errno != EINTR) break;
+  sa_signals_child_remove(slot);
   if (timed_out) {
     snprintf(r->out, sizeof r->out, "gnuplot killed after %.0f s", timeout);
     return -1;
@@ -171,7 +188,7 @@ static int sa_plot_terminal(const char *exe, int *term) {
     SaPlotRun *r = malloc(sizeof *r);
     if (!r) return -1;
     char *argv[] = {"gnuplot", "-e", "set terminal", NULL};
-    if (sa_plot_exec(exe, NULL, argv, SA_PLOT_TIMEOUT, r) == 0 && r->status == 0)
+    if (sa_plot_exec(exe, NULL, argv, SA_PLOT_TIMEOUT, NULL, r) == 0 && r->status == 0)
       t = strstr(r->out, "pngcairo") ? SA_PLOT_TERM_PNGCAIRO : SA_PLOT_TERM_PNG;
     free(r);
     if (t == SA_PLOT_TERM_UNKNOWN) return -1;
@@ -297,7 +314,7 @@ static int sa_plot_render(const char *png, int width, int height, const char *bo
   SaPlotRun *r = malloc(sizeof *r);
   if (!r) return SA_ERROR(SA_ERR_MEMORY, "cannot allocate the gnuplot output buffer");
   char *argv[] = {"gnuplot", "-e", set_out, gp_base, NULL};
-  int ran = sa_plot_exec(exe, dir, argv, SA_PLOT_TIMEOUT, r);
+  int ran = sa_plot_exec(exe, dir, argv, SA_PLOT_TIMEOUT, tmp_path, r);
   struct stat st;
   int made = stat(tmp_path, &st) == 0 && st.st_size > 0;
   if (ran != 0 || r->status != 0 || !made) {

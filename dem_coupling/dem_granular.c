@@ -257,9 +257,7 @@ static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z
       .dt = g->dt, .dt_safety = 0.35, .gravity = {0, 0, sc->coupling.gravity ? -G_ACC : 0},
       .skin = sc->dem.skin * g->d, .seed = sc->dem.seed};
   /* the pour column: the bed volume at a loose 0.3 packing above the barrel top */
-  double V_bore = M_PI * R_BORE * R_BORE * (80e-3 + gr->fill_height);
-  if (!resume)
-    g->n_grains = (int)ceil(1.04 * gr->packing_guess * V_bore / (M_PI * pow(g->d, 3) / 6));
+  if (!resume) g->n_grains = (int)dem_scene_pour_count(gr); /* <= DEM_MAX_GRAINS (dem_check) */
   /* the pour column above the barrel: a grain column of height h takes sqrt(2 h / g) to fall,
    * so fewer, taller rounds pour faster (the time per grain falls as 1 / sqrt(h)); 160 mm
    * holds ~80 % of the 2 mm bed at the insertion packing below */
@@ -346,7 +344,9 @@ static int dem_advance(Run *g, double t) {
   long steps = (long)ceil(t / g->dt);
   double t0 = sa_time_now();
   while (steps > 0) {
-    int n = steps > 2000 ? 2000 : (int)steps;
+    /* 250 steps of ~2 ms (docs/dem.md): a signal is answered within about half a second;
+     * after the first run the chunks skip LIGGGHTS' set-up (run N pre no) */
+    int n = steps > 250 ? 250 : (int)steps;
     SA_CHECK(dem_bridge_run(g->b, n));
     steps -= n;
     if (sa_interrupted()) break;
@@ -490,6 +490,8 @@ static int dem_step(Run *g, double z0, double v, double T) {
   memset(g->f_sum, 0, sizeof(double) * 3 * (size_t)g->nt);
   for (int k = 0; k < 3 * g->nv; k++) g->vw[k] = (g->xw_cur[k] - g->xw_prev[k]) / T;
   for (long done = 0; done < nsteps;) {
+    /* a coupling step is thousands of DEM steps (~17 s in the default scene) */
+    SA_REQUIRE(!sa_interrupted(), SA_ERR_INTERRUPTED, "interrupted inside a coupling step");
     int n = nsteps - done < chunk ? (int)(nsteps - done) : chunk;
     double te = (done + n) * g->dt, a = fmin(te / T, 1.0);
     double t0 = sa_time_now();
@@ -1002,9 +1004,10 @@ static int stroke(Run *g, double *s_reached) {
   *s_reached = g->next_step > N_PRELOAD
                    ? fmin((g->next_step - N_PRELOAD) * cc->interval, sc->piston.stroke)
                    : 0;
-  int rc = 0;
+  int rc = 0, at_boundary = 0;
   for (int j = g->next_step; j < ntot && !rc; j++) {
     if (sa_interrupted()) {
+      at_boundary = 1;
       rc = write_checkpoint(g);
       if (!rc)
         rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted at piston displacement %.3f mm (resume "
@@ -1048,6 +1051,13 @@ static int stroke(Run *g, double *s_reached) {
       rc = write_checkpoint(g);
     if (prog) sa_progress_update(prog, j + 1);
   }
+  if (rc == SA_ERR_INTERRUPTED && !at_boundary)
+    /* stopped inside a coupling step (DEM chunks, Newton iterations), so that a signal is
+     * answered within about a second, not at the end of a ~17 s step: the DEM is part-way
+     * through the step, which cannot be checkpointed; the last checkpoint stays valid */
+    sa_log(SA_LOG_WARN, "dem", "interrupted inside coupling step %d: the step is discarded; "
+           "coupling.resume=true continues from the last checkpoint, if one was written",
+           g->next_step);
   sa_progress_finish(&prog);
   return rc;
 }

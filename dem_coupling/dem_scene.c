@@ -85,7 +85,8 @@ static const SaParam coupling_params[] = {
      "gravity (-z, 9.81 m/s^2) on grains and silicone"},
     {"checkpoint_every", SA_PARAM_INT, P(checkpoint_every), "-", "20", 0, 100000, 0, NULL,
      "coupling steps between checkpoints in <out>/checkpoint (0 = only when interrupted); a "
-     "run stopped by SIGINT/SIGTERM always writes one"},
+     "run stopped by a signal between coupling steps writes one; inside a step it stops after "
+     "the current DEM chunk or Newton iteration and keeps the last one"},
     {"resume", SA_PARAM_BOOL, P(resume), "-", "0", 0, 0, 0, NULL,
      "continue from <out>/checkpoint of an earlier run of the same case into the same --out "
      "folder, instead of pouring (same result as a run that was never stopped)"},
@@ -172,12 +173,33 @@ static int dem_check(const SaCase *c, void **out) {
   if (!rc && s->coupling.interval > p->stroke)
     rc = SA_ERROR(SA_ERR_INPUT, "%s: [coupling] interval = %g m is longer than the stroke %g m",
                   f, s->coupling.interval, p->stroke);
+  /* products of keys that size the run: the coupling steps (a loop, and a CSV row each kept in
+   * memory for the checkpoint) and the grains poured (an int, and LIGGGHTS' memory) */
+  double nsteps = !rc ? p->stroke / s->coupling.interval : 0;
+  if (!rc && nsteps > DEM_MAX_COUPLING_STEPS)
+    rc = SA_ERROR(SA_ERR_INPUT, "%s: [piston] stroke / [coupling] interval = %g / %g = %.4g coupling "
+                  "steps; at most %.0e are allowed", f, p->stroke, s->coupling.interval, nsteps,
+                  DEM_MAX_COUPLING_STEPS);
+  double ngr = !rc ? dem_scene_pour_count(g) : 0;
+  if (!rc && ngr > DEM_MAX_GRAINS)
+    rc = SA_ERROR(SA_ERR_INPUT, "%s: [grains] diameter = %g m with fill_height = %g m and "
+                  "packing_guess = %g pours %.4g grains; at most %.0e are allowed (raise the "
+                  "diameter)", f, g->diameter, g->fill_height, g->packing_guess, ngr,
+                  DEM_MAX_GRAINS);
   if (rc) {
     free(s);
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
   *out = s;
   return 0;
+}
+
+double dem_scene_pour_count(const DemGrainCase *g) {
+  /* the pour column: the bore (cavity radius 6 mm, 80 mm deep below the barrel top) up to
+   * fill_height, at packing_guess, 4 % extra */
+  const double r_bore = 6e-3, depth = 80e-3;
+  double V_bore = M_PI * r_bore * r_bore * (depth + g->fill_height);
+  return ceil(1.04 * g->packing_guess * V_bore / (M_PI * pow(g->diameter, 3) / 6));
 }
 
 static void dem_write_resolved(const void *scene, FILE *f) {

@@ -51,6 +51,12 @@ int dem_granular_run(const DemScene *sc, const SaRun *run);
 
 /* Rayleigh time step of a Hertz contact [s] (Li, Xu & Thornton 2005):
  * pi R sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)). */
+/* Grains the pour inserts (bore volume up to fill_height at packing_guess), as a double so
+ * that dem_check can compare it with DEM_MAX_GRAINS before it becomes an int. */
+double dem_scene_pour_count(const DemGrainCase *g);
+#define DEM_MAX_GRAINS 1e6
+#define DEM_MAX_COUPLING_STEPS 1e6
+
 double dem_scene_rayleigh_dt(double diameter, double density, double young, double poisson);
 
 #endif

@@ -249,6 +249,12 @@ int fem_cont_ramp(FemSolver *s, int dynamic, double dt_total) {
       }
       continue;
     }
+    if (rc == SA_ERR_INTERRUPTED) {
+      /* leave the solver at the last converged state: the caller reports it (summary,
+       * checkpoint), not the abandoned iterate */
+      restore_last(s);
+      fem_cont_apply_loads(s, lam);
+    }
     if (rc < 0) return sa_error_push(rc, __func__, __FILE__, __LINE__);
     snprintf(s->ct.last_fail, sizeof s->ct.last_fail, "%s", sa_error_message());
     sa_error_clear();

@@ -93,6 +93,25 @@ static double prandtl_nc(double phi_deg) {
   return (nq - 1) / tan(p);
 }
 
+/* Domain (in B) and cell counts of the mesh: Prandtl's mechanism, r0 = (B/2) / cos(45 + phi/2),
+ * r1 = r0 e^(pi/2 tan phi), the passive wedge reaches L = 2 r1 cos(45 - phi/2) beyond the
+ * footing edge (1 B at phi = 0, 4.3 B at 30 deg); beside the footing and over the depth
+ * n sqrt(L / (B/2)) cells, graded with the power that makes the first cell at the edge equal
+ * the smallest one. Counts as doubles: the check compares them before they become ints. */
+static void foot_grid(const FootScene *sc, double *dw, double *dd, double *nb, double *nz) {
+  const FootParams *F = &sc->ft;
+  double ph = sc->fill.friction_angle * M_PI / 180;
+  double Lm = 2 * 0.5 / cos(M_PI / 4 + ph / 2) * exp(M_PI / 2 * tan(ph)) * cos(M_PI / 4 - ph / 2);
+  *dw = F->domain_width > 0 ? F->domain_width : 0.5 + 1.5 * Lm;
+  *dd = F->domain_depth > 0 ? F->domain_depth : 0.5 + 0.6 * Lm;
+  *nb = fmax(2.0, ceil(F->cells * sqrt((*dw - 0.5) / 0.5)));
+  *nz = fmax(2.0, ceil(F->cells * sqrt(*dd / 0.5)));
+}
+
+/* Tetrahedra the footing mesh may have (6 per cell): cells and the domain keys multiply, and
+ * the element arrays and the sparse factors grow with (faster than) their count. */
+#define FOOT_MAX_TETS 2e6
+
 static int foot_check(const SaCase *c, void **out) {
   *out = NULL;
   FootScene *s;
@@ -107,6 +126,16 @@ static int foot_check(const SaCase *c, void **out) {
   if (!rc && s->ft.domain_depth > 0 && s->ft.domain_depth < 0.5)
     rc = SA_ERROR(SA_ERR_INPUT, "%s: [footing] domain_depth = %g: expected 0 (automatic) or a "
                   "value in [0.5, 100]", sa_case_path(c), s->ft.domain_depth);
+  if (!rc) {
+    double dw, dd, nb, nz;
+    foot_grid(s, &dw, &dd, &nb, &nz);
+    double ntet = 6.0 * (s->ft.cells + nb) * nz;
+    if (ntet > FOOT_MAX_TETS)
+      rc = SA_ERROR(SA_ERR_INPUT, "%s: [footing] cells = %d with domain_width = %g, domain_depth "
+                    "= %g (B) makes (%d + %.0f) x %.0f cells = %.3g tetrahedra; at most %.0e are "
+                    "allowed (lower cells or the domain)", sa_case_path(c), s->ft.cells, dw, dd,
+                    s->ft.cells, nb, nz, ntet, FOOT_MAX_TETS);
+  }
   if (!rc && !(s->fill.cohesion > 0))
     rc = SA_ERROR(SA_ERR_INPUT, "%s: [fill] cohesion = %g: the footing scene reports p / c, "
                   "expected cohesion > 0", sa_case_path(c), s->fill.cohesion);
@@ -235,22 +264,12 @@ static int foot_run(void *scene, SaRun *run) {
   t.B = F->width;
   t.nc = prandtl_nc(sc->fill.friction_angle);
   t.p_max = -INFINITY;
-  /* Prandtl's mechanism: r0 = (B/2) / cos(45 + phi/2), r1 = r0 e^(pi/2 tan phi), the passive
-   * wedge reaches L = 2 r1 cos(45 - phi/2) beyond the footing edge (1 B at phi = 0, 4.3 B at
-   * 30 deg) */
-  double ph = sc->fill.friction_angle * M_PI / 180;
-  double Lm = 2 * 0.5 / cos(M_PI / 4 + ph / 2) * exp(M_PI / 2 * tan(ph)) * cos(M_PI / 4 - ph / 2);
-  double dw = F->domain_width > 0 ? F->domain_width : 0.5 + 1.5 * Lm;
-  double dd = F->domain_depth > 0 ? F->domain_depth : 0.5 + 0.6 * Lm;
-  int n = F->cells;
+  double dw, dd, nbd, nzd;
+  foot_grid(sc, &dw, &dd, &nbd, &nzd);
+  int n = F->cells, nb = (int)nbd, nz = (int)nzd;
   double b2 = 0.5 * F->width, W = dw * F->width, D = dd * F->width, g = F->grading;
   /* the smallest cell, at the footing edge (also the slab thickness) */
   double hx = b2 * pow(1.0 / n, g);
-  /* beside the footing and over the depth: n sqrt(L / (B/2)) cells, graded with the power that
-   * makes the first cell at the edge equal hx */
-  int nb = (int)ceil(n * sqrt((W - b2) / b2)), nz = (int)ceil(n * sqrt(D / b2));
-  if (nb < 2) nb = 2;
-  if (nz < 2) nz = 2;
   double gb = fmax(1.0, log((W - b2) / hx) / log(nb)), gz = fmax(1.0, log(D / hx) / log(nz));
   FootMap ma = {b2, W, D, hx, g, gb, gz, 0}, mb = ma;
   mb.side = 1;
@@ -331,8 +350,8 @@ static int foot_run(void *scene, SaRun *run) {
       rc = fem_solver_set_prescribed(t.s, t.foot->nnodes, t.foot->nodes, 2, -d);
       if (!rc) rc = fem_solver_solve(t.s);
       if (rc) {
-        sa_log(SA_LOG_ERROR, "fem", "settlement ramp stopped at step %d; results up to step %d "
-               "are written", t.step, t.step - 1);
+        sa_log(rc == SA_ERR_INTERRUPTED ? SA_LOG_WARN : SA_LOG_ERROR, "fem", "settlement ramp "
+               "stopped at step %d; results up to step %d are written", t.step, t.step - 1);
         break;
       }
       rc = output_step(&t, t.step == F->steps);

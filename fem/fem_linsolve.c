@@ -15,6 +15,7 @@
 #include <umfpack.h>
 
 #include "sa_error.h"
+#include "sa_output.h"
 #include "sa_log.h"
 
 void openblas_set_num_threads(int num_threads);
@@ -202,6 +203,11 @@ int fem_linsolve_factorize(FemLinSolver *s, const double *values, int symmetric)
       sa_timing_add("fem factorise", sa_time_now() - t0);
       return SA_ERR_NOT_SPD;
     }
+  }
+  /* the LU after a failed Cholesky costs ~6 of them: not started once a signal came */
+  if (symmetric && sa_interrupted()) {
+    sa_timing_add("fem factorise", sa_time_now() - t0);
+    return SA_ERROR(SA_ERR_INTERRUPTED, "interrupted before the LU factorisation");
   }
   int rc = umf_factorize(s, values);
   sa_timing_add("fem factorise", sa_time_now() - t0);

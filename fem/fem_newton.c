@@ -19,6 +19,7 @@
 #include "fem_solver_priv.h"
 #include "sa_error.h"
 #include "sa_log.h"
+#include "sa_output.h"
 
 const char *fem_newton_reason_string(FemNewtonReason r) {
   switch (r) {
@@ -86,6 +87,7 @@ static int factorize_modified(FemSolver *s, double p_asm) {
   if (s->ct.p_last > 0 && s->ct.p_last < p_asm) betas[nb++] = s->ct.p_last / p_asm;
   betas[nb++] = 0.0;
   for (int i = 0; i < nb; i++) {
+    if (sa_interrupted()) break; /* each attempt is a factorisation (seconds) */
     fem_asm_add_load_stiffness(s, s->x, (betas[i] - cur) * p_asm);
     cur = betas[i];
     rc = try_cholesky(s);
@@ -99,6 +101,7 @@ static int factorize_modified(FemSolver *s, double p_asm) {
     }
   }
   fem_asm_add_load_stiffness(s, s->x, (1.0 - cur) * p_asm);
+  if (sa_interrupted()) return SA_ERROR(SA_ERR_INTERRUPTED, "interrupted between factorisations");
   return SA_ERR_NOT_SPD;
 }
 
@@ -431,6 +434,12 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
    * saved a third of the factorisations but not time (docs/fem.md). */
   t.have_fact = t.reuse;
   for (;;) {
+    /* a load step of a fine mesh takes minutes, one iteration (assembly + factorisation)
+     * seconds at most: a signal is answered here */
+    if (sa_interrupted()) {
+      *iters = t.it;
+      return SA_ERROR(SA_ERR_INTERRUPTED, "interrupted at step %d, Newton iteration %d", step, t.it);
+    }
     if (sk->dynamic) fem_dyn_kinematics(s, sk);
     /* Reuse is planned before the assembly, so a direction from reused factors builds no
      * tangent and the values the factors were computed from (incl. the dynamic mass term) stay

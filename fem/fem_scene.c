@@ -274,8 +274,8 @@ static int run_ramp(Out *o) {
       continue;
     }
     if (rc) {
-      sa_log(SA_LOG_ERROR, "fem", "ramp stopped at step %d; results up to step %d are written",
-             o->step, o->step - 1);
+      sa_log(rc == SA_ERR_INTERRUPTED ? SA_LOG_WARN : SA_LOG_ERROR, "fem",
+             "ramp stopped at step %d; results up to step %d are written", o->step, o->step - 1);
       return sa_error_push(rc, __func__, __FILE__, __LINE__);
     }
     Vlast = fem_solver_cavity_volume(s);

@@ -296,8 +296,8 @@ static int run_stages(Tx *t) {
     SA_CHECK(fem_solver_set_prescribed(t->s, t->top->nnodes, t->top->nodes, 2, h - L));
     int rc = fem_solver_solve(t->s);
     if (rc) {
-      sa_log(SA_LOG_ERROR, "fem", "compression stopped at step %d; results up to step %d are "
-             "written", t->step, t->step - 1);
+      sa_log(rc == SA_ERR_INTERRUPTED ? SA_LOG_WARN : SA_LOG_ERROR, "fem", "compression stopped "
+             "at step %d; results up to step %d are written", t->step, t->step - 1);
       return sa_error_push(rc, __func__, __FILE__, __LINE__);
     }
     SA_CHECK(output_step(t, t->step == P->steps));

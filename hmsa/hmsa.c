@@ -268,6 +268,49 @@ static int build_variants(HmsaScene *s) {
 
 /* ------------------------------------------------------------------ module interface */
 
+/* Limits on the products of case keys that size an array or a loop, checked before the run:
+ * each key alone may be inside its range while the product overflows an int (the samples of
+ * one sweep point, 65536 x 65536 = 2^32, wrapped to 0 and gave zero amplitudes) or asks for
+ * more memory than a worker should take. */
+#define HMSA_MAX_MEASURE_SAMPLES 1e7  /* x 2 doubles per worker thread: 160 MB */
+#define HMSA_MAX_TRANSIENT_PERIODS 1e6 /* as [hmsa_sweep] transient_periods' own range */
+#define HMSA_SETTLING_DT 0.002          /* grid of hmsa_settling_time */
+#define HMSA_MAX_SETTLING_POINTS 1e9    /* loop count of the settling-time pass */
+
+static int check_sizes(const SaCase *c, const HmsaScene *s) {
+  const HmsaParams *p = &s->p;
+  const HmsaSweepParams *w = &s->sw;
+  char where[SA_STR_MAX];
+  if (!strcmp(p->analysis, "sweep")) {
+    double nm = (double)w->measure_periods * (double)w->samples_per_period;
+    SA_REQUIRE(nm <= HMSA_MAX_MEASURE_SAMPLES, SA_ERR_INPUT,
+               "%s: [hmsa_sweep] measure_periods x samples_per_period = %d x %d = %.4g samples per "
+               "frequency; at most %.0e are allowed (each sample keeps 2 doubles per worker "
+               "thread: %.0f MB at the limit)",
+               sa_case_origin(c, "hmsa_sweep", "samples_per_period", where), w->measure_periods,
+               w->samples_per_period, nm, HMSA_MAX_MEASURE_SAMPLES,
+               16.0 * HMSA_MAX_MEASURE_SAMPLES / 1e6);
+    /* the transient runs at least transient_tau, i.e. this many periods at omega_max */
+    double ntau = w->transient_tau * w->omega_max / (2.0 * HMSA_PI);
+    SA_REQUIRE(ntau <= HMSA_MAX_TRANSIENT_PERIODS, SA_ERR_INPUT,
+               "%s: [hmsa_sweep] transient_tau x omega_max / (2 pi) = %g x %g / (2 pi) = %.4g "
+               "transient periods; at most %.0e are allowed (the limit of transient_periods)",
+               sa_case_origin(c, "hmsa_sweep", "transient_tau", where), w->transient_tau,
+               w->omega_max, ntau, HMSA_MAX_TRANSIENT_PERIODS);
+  }
+  /* the settling time of a Zener step response is found on a grid of 0.002 up to t_end */
+  if (!strcmp(p->analysis, "history") && !strcmp(p->model, "zener") &&
+      !strcmp(p->loading, "const")) {
+    double npt = p->t_end / HMSA_SETTLING_DT;
+    SA_REQUIRE(npt <= HMSA_MAX_SETTLING_POINTS, SA_ERR_INPUT,
+               "%s: [hmsa] t_end / %g = %.4g points of the settling-time grid; at most %.0e are "
+               "allowed (t_end <= %g)", sa_case_origin(c, "hmsa", "t_end", where),
+               HMSA_SETTLING_DT, npt, HMSA_MAX_SETTLING_POINTS,
+               HMSA_MAX_SETTLING_POINTS * HMSA_SETTLING_DT);
+  }
+  return 0;
+}
+
 static int hmsa_check(const SaCase *c, void **out) {
   *out = NULL;
   HmsaScene *s;
@@ -315,7 +358,8 @@ static int hmsa_check(const SaCase *c, void **out) {
                   sa_case_origin(c, "hmsa", "dt_out", where), p->t_end / p->dt_out);
     goto fail;
   }
-  rc = build_variants(s);
+  rc = check_sizes(c, s);
+  if (!rc) rc = build_variants(s);
   if (rc) goto fail;
   hmsa_integrator_options_default(&s->io);
   s->io.method = !strcmp(p->method, "erk") ? HMSA_METHOD_ERK
@@ -593,7 +637,9 @@ static int run_history(const HmsaScene *s, HmsaVariant *v, const SaRun *run, Sum
     double tau = k * s->p.dt_out;
     if (k > 0) rc = hmsa_integrator_advance(it, tau, y);
     if (rc) break;
-    if (k % 1000 == 0 && sa_interrupted()) { rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted"); break; }
+    /* every row: the check is a flag read; with large steps many rows come from dense output
+     * (the integrator polls per step) */
+    if (sa_interrupted()) { rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted"); break; }
     row[0] = tau, row[1] = y[0], row[2] = y[1], row[3] = hmsa_lambda3(y), row[4] = hmsa_dlambda3(y);
     if (zener) row[5] = y[2];
     rc = sa_csv_row(t, row);
@@ -855,7 +901,8 @@ static int run_poincare(const HmsaScene *s, HmsaVariant *v, const SaRun *run, Su
     for (int i = 0; i < n; i++) y[i] = x[(size_t)(np - 1) * n + i];
     for (int k = 0; !rc && k <= N; k++) {
       double tau = tau0 + (double)k * T / per;
-      if (k > 0) rc = hmsa_integrator_advance(it, tau, y);
+      if (sa_interrupted()) rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted");
+      if (!rc && k > 0) rc = hmsa_integrator_advance(it, tau, y);
       double row[6] = {tau, y[0], y[1], hmsa_lambda3(y), hmsa_dlambda3(y), zener ? y[2] : 0};
       if (!rc) rc = sa_csv_row(t, row);
     }

@@ -2,6 +2,7 @@
  * Lyapunov exponent, and frequency sweeps (MODEL.md section 7). */
 #include "hmsa_analysis.h"
 
+#include <limits.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -34,6 +35,15 @@ int hmsa_steady_amplitude(HmsaIntegrator *it, const HmsaModel *m, const HmsaStea
                           const double *y0, HmsaSteady *out) {
   double T = hmsa_model_period(m);
   SA_REQUIRE(T > 0, SA_ERR_INPUT, "steady amplitude needs a periodic load with omega > 0");
+  /* the products are checked with the case (hmsa.c); a caller that skipped that gets an
+   * error, not a wrapped int */
+  SA_REQUIRE(o->samples_per_period > 0 && o->measure_periods > 0 &&
+                 (long long)o->measure_periods * o->samples_per_period < INT_MAX / 2,
+             SA_ERR_INPUT, "steady amplitude: %d measure periods x %d samples per period do not fit",
+             o->measure_periods, o->samples_per_period);
+  SA_REQUIRE(o->transient_tau / T < INT_MAX / 2 - o->measure_periods, SA_ERR_INPUT,
+             "steady amplitude: transient_tau = %g is %g periods", o->transient_tau,
+             o->transient_tau / T);
   int ntr = o->transient_periods;
   int ntau = (int)ceil(o->transient_tau / T - 1e-12);
   if (ntau > ntr) ntr = ntau;
@@ -52,7 +62,7 @@ int hmsa_steady_amplitude(HmsaIntegrator *it, const HmsaModel *m, const HmsaStea
   lv[0] = y[0];
   int rc = 0;
   for (int j = 1; j <= nm; j++) {
-    if (j % sp == 0 && sa_interrupted()) { rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted"); break; }
+    if (sa_interrupted()) { rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted"); break; }
     /* every period end is computed as an integer multiple of T (no drift of the phase) */
     double t = (j % sp == 0) ? (ntr + j / sp) * T : ntr * T + (double)j * T / sp;
     rc = hmsa_integrator_advance(it, t, y);
@@ -89,6 +99,8 @@ int hmsa_settling_time(const HmsaModel *m, const HmsaIntegratorOptions *io, doub
   int outside_seen = 0;
   for (long k = 1; !rc && k <= N; k++) {
     double t = k * dt;
+    /* a large step serves many grid points from dense output without stepping (and polling) */
+    if (sa_interrupted()) { rc = SA_ERROR(SA_ERR_INTERRUPTED, "interrupted"); break; }
     rc = hmsa_integrator_advance(it, t, y);
     if (rc) break;
     if (fabs(hmsa_lambda3(y) - lambda3_eq) > tol) {

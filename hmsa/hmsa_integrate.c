@@ -22,6 +22,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "sa_error.h"
+#include "sa_output.h"
 
 struct HmsaIntegrator {
   const HmsaModel *m;
@@ -351,22 +352,45 @@ static int get_dky(HmsaIntegrator *it, double tout, N_Vector out) {
   return 0;
 }
 
+/* The case key that sets the load's size, for the advice of diagnose_domain. */
+static const char *load_keys(const HmsaModel *m) {
+  switch (m->loading) {
+  case HMSA_LOAD_SQ: return "b_a";
+  case HMSA_LOAD_LIN: return "b2_dc and b2_ac";
+  default: return "b2";
+  }
+}
+
+/* Why the steps collapsed at the domain boundary, in the terms of the model that ran: the PC
+ * model's boundary is the chain-locking pole I1 = 3 lambda_max^2 (at both ends of its lambda
+ * range), the Zener model's is only lambda > 0, xi > 0 (it has no lambda_max), which only an
+ * enormous load crosses within a step. */
 static int diagnose_domain(HmsaIntegrator *it, int rc_sun) {
   const double *y = N_VGetArrayPointer(it->ylast);
-  double lm2 = it->m->lambda_max * it->m->lambda_max;
-  double y2 = y[0] * y[0], I1 = 2 * y2 + 1.0 / (y2 * y2);
-  double h = 0.0;
   HmsaIntegratorStats st;
   hmsa_integrator_get_stats(it, &st);
-  h = st.h_last;
+  double h = st.h_last;
+  if (it->m->model == HMSA_PC) {
+    double lm2 = it->m->lambda_max * it->m->lambda_max;
+    double y2 = y[0] * y[0], I1 = 2 * y2 + 1.0 / (y2 * y2);
+    return SA_ERROR(SA_ERR_DOMAIN,
+                    "%s cannot step past tau = %.10g: the solution runs into the PC pole "
+                    "I1 = 3 lambda_max^2 = %.10g (I1 = %.12g, gap %.3g at the last accepted state "
+                    "lambda = %.12g, lambda' = %.6g); the step collapsed to %.3g with %ld RHS calls "
+                    "outside the domain rejected (solver code %d). The turning point is closer to "
+                    "the pole than double precision resolves: lower |%s| or raise lambda_max",
+                    hmsa_method_name(it->active), it->tlast, 3 * lm2, I1, 3 * lm2 - I1, y[0], y[1],
+                    h, it->domain_fails, rc_sun, load_keys(it->m));
+  }
   return SA_ERROR(SA_ERR_DOMAIN,
-                  "%s cannot step past tau = %.10g: the solution runs into the PC pole "
-                  "I1 = 3 lambda_max^2 = %.10g (I1 = %.12g, gap %.3g at the last accepted state "
-                  "lambda = %.12g, lambda' = %.6g); the step collapsed to %.3g with %ld RHS calls "
-                  "outside the domain rejected (solver code %d). The turning point is closer to "
-                  "the pole than double precision resolves: lower |b2| or raise lambda_max",
-                  hmsa_method_name(it->active), it->tlast, 3 * lm2, I1, 3 * lm2 - I1, y[0], y[1],
-                  h, it->domain_fails, rc_sun);
+                  "%s cannot step past tau = %.10g: every step takes the Zener model out of its "
+                  "domain lambda > 0, xi > 0 (last accepted state lambda = %.12g, lambda' = %.6g, "
+                  "xi = %.12g, load b2 = %.6g there); the step collapsed to %.3g with %ld RHS "
+                  "calls outside the domain rejected (solver code %d). The load drives lambda out of "
+                  "(0, inf) faster than a step resolves: lower |%s|",
+                  hmsa_method_name(it->active), it->tlast, y[0], y[1], y[2],
+                  hmsa_model_b2(it->m, it->tlast), h, it->domain_fails, rc_sun,
+                  load_keys(it->m));
 }
 
 int hmsa_integrator_advance(HmsaIntegrator *it, double tout, double *yout) {
@@ -375,6 +399,10 @@ int hmsa_integrator_advance(HmsaIntegrator *it, double tout, double *yout) {
   int retries = 0;
   N_Vector ytmp = it->y;
   while (it->t < tout) {
+    /* one step takes microseconds, but a stiff problem under erk needs millions of them per
+     * output interval: polling here lets every caller answer a signal at once */
+    if (sa_interrupted())
+      return SA_ERROR(SA_ERR_INTERRUPTED, "interrupted at tau = %g", it->t);
     SA_REQUIRE(nsteps < it->o.max_steps, SA_ERR_NOT_CONVERGED,
                "%s needed more than %ld steps to reach tau = %g (now at %g)",
                hmsa_method_name(it->active), it->o.max_steps, tout, it->t);

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Interrupting a run: SIGTERM (and SIGINT) stop a long run cleanly with exit status 3, keep
 what was computed as complete files, and never leave a temporary or truncated file; a second
-signal stops at once, still leaving no temporary. Uses a long HMSA time history."""
+signal stops at once, still leaving no temporary. Uses a long HMSA time history.
+Delays count from a sign of life (the results folder appears), not from the start: on a loaded
+machine start-up alone can take longer than a fixed delay; early_sigterm signals at once then."""
 import csv, glob, os, signal, subprocess, sys, tempfile, time
 
 exe = sys.argv[1]
@@ -39,11 +41,14 @@ with tempfile.TemporaryDirectory() as tmp:
     with open(case, "w") as f:
         f.write(CASE)
     for label, signals, delay in [("sigterm", [signal.SIGTERM], 2.0), ("sigint", [signal.SIGINT], 1.0),
-                                  ("early_sigterm", [signal.SIGTERM], 0.3),
+                                  ("early_sigterm", [signal.SIGTERM], 0.0),
                                   ("double_signal", [signal.SIGTERM, signal.SIGTERM], 1.0)]:
         out = os.path.join(tmp, label)
         p = subprocess.Popen([exe, "run", case, "--out", out, "--quiet"], stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, text=True)
+        t0 = time.time()
+        while not os.path.isdir(out) and p.poll() is None and time.time() - t0 < 60:
+            time.sleep(0.005)
         time.sleep(delay)
         if p.poll() is not None:
             fails.append(f"{label}: run ended before the signal (rc={p.returncode}); make the case longer")
