@@ -1,10 +1,10 @@
 /* softact - command-line front end: parse arguments, load the case, hand it to the module
  * whose section it contains, map the result to an exit status. The physics lives in the
  * modules; this file only wires them (see docs/architecture.md). */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "sa_error.h"
@@ -52,7 +52,8 @@ static void usage(FILE *f) {
           "       softact --help | --version\n"
           "\n"
           "  run     validate the case, then compute it; results go to DIR (default: [run] out_dir,\n"
-          "          else results/<case name>): case.ini (resolved case), softact.log, CSV, PNG, VTK\n"
+          "          else results/<case name>): case.ini (resolved case), softact.log, CSV, PNG, VTK;\n"
+          "          DIR is new, empty or an earlier softact run, which the run replaces when it ends\n"
           "  check   validate the case and print it fully resolved (defaults filled in); run nothing\n"
           "\n"
           "scenes (the section that selects each):\n");
@@ -138,18 +139,19 @@ static int parse_args(int argc, char **argv, Args *a) {
 
 /* Write the resolved case (run table + module tables) to f. */
 static void write_resolved(FILE *f, const SaCase *c, const SaRunParams *rp, const SaModule *m, const void *scene) {
-  fprintf(f, "; resolved case of %s (softact %s): every key with its value, defaults filled in\n\n",
+  /* the mark is how a later run recognises this folder as a softact run (sa_output.h) */
+  fprintf(f, SA_RESULTS_MARK " %s (softact %s): every key with its value, defaults filled in\n\n",
           sa_case_path(c), SOFTACT_VERSION);
   sa_params_write(&sa_run_table, rp, f);
   m->write_resolved(scene, f);
 }
 
-/* Remove what this run created in a results folder when the input turned out to be bad. */
-static void remove_created(const char *dir, int made_dir, const char *const *files, int nfiles) {
-  char path[SA_STR_MAX];
-  for (int i = 0; i < nfiles; i++)
-    if (sa_path_join(dir, files[i], path) == 0) unlink(path);
-  if (made_dir) rmdir(dir);
+/* Flush standard output and report a failed write (a full disk, a closed pipe): a listing that
+ * was cut must not exit 0. */
+static int stdout_flush(void) {
+  SA_REQUIRE(fflush(stdout) == 0 && !ferror(stdout), SA_ERR_IO, "cannot write to standard output: %s",
+             strerror(errno));
+  return 0;
 }
 
 static int run_case(const Args *a) {
@@ -184,63 +186,77 @@ static int run_case(const Args *a) {
 
   if (!strcmp(a->command, "check")) {
     write_resolved(stdout, c, &run.params, m, scene);
+    rc = stdout_flush();
     goto done;
   }
 
-  /* run: the results folder is created only now, after the whole case validated */
+  /* run: the results folder is created only now, after the whole case validated; see
+   * sa_results_open for what happens to an existing folder */
   run.scase = c;
   run.vtk = strcmp(run.params.vtk_format, "ascii") ? SA_VTK_BINARY : SA_VTK_ASCII;
   run.threads = run.params.threads > 0 ? run.params.threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
   if (run.threads < 1) run.threads = 1;
-  if (a->out)
-    snprintf(run.out_dir, sizeof run.out_dir, "%s", a->out);
-  else if (run.params.out_dir[0])
-    snprintf(run.out_dir, sizeof run.out_dir, "%s", run.params.out_dir);
-  else
-    snprintf(run.out_dir, sizeof run.out_dir, "results/%s", sa_case_stem(c));
-  struct stat st;
-  int made_dir = stat(run.out_dir, &st) != 0;
-  rc = sa_mkdir_p(run.out_dir);
+  char stem_dir[SA_STR_MAX];
+  snprintf(stem_dir, sizeof stem_dir, "results/%s", sa_case_stem(c));
+  const char *out = a->out ? a->out : run.params.out_dir[0] ? run.params.out_dir : stem_dir;
+  SaResults *res = NULL;
+  rc = sa_results_open(out, m->resumes && m->resumes(scene), &res);
   if (rc) goto done;
+  snprintf(run.out_dir, sizeof run.out_dir, "%s", sa_results_work(res));
+  const char *final_dir = sa_results_dir(res);
 
+  /* A resumed run keeps the folder's case.ini until it ends: if the resume is refused (bad
+   * input), the folder must still describe the run it holds. */
+  int in_place = sa_results_in_place(res);
   char path[SA_STR_MAX];
   SaFile *cf = NULL, *lf = NULL;
   rc = sa_run_path(&run, "case.ini", path);
   if (!rc) rc = sa_file_open(path, &cf);
   if (!rc) {
     write_resolved(sa_file_stream(cf), c, &run.params, m, scene);
-    rc = sa_file_commit(&cf);
+    if (!in_place) rc = sa_file_commit(&cf);
   }
   if (!rc) rc = sa_run_path(&run, "softact.log", path);
   if (!rc) rc = sa_file_open(path, &lf);
-  if (rc) goto done;
-  sa_log_set_file(sa_file_stream(lf));
-  sa_log(SA_LOG_INFO, "core", "softact %s: %s (%s scene) -> %s", SOFTACT_VERSION, a->case_path, m->name,
-         run.out_dir);
-  double t0 = sa_time_now();
-  rc = m->run(scene, &run);
-  double elapsed = sa_time_now() - t0;
-  if (rc == SA_ERR_INTERRUPTED || (sa_interrupted() && rc == 0)) {
-    rc = SA_ERR_INTERRUPTED;
-    sa_log(SA_LOG_WARN, "core", "interrupted by signal %d: results computed so far are kept in %s",
-           sa_interrupt_signal(), run.out_dir);
+  int ran = !rc;
+  if (ran) {
+    sa_log_set_file(sa_file_stream(lf));
+    if (strcmp(final_dir, run.out_dir))
+      sa_log(SA_LOG_INFO, "core", "softact %s: %s (%s scene) -> %s (written in %s until the run ends; "
+             "then it replaces the earlier run there)", SOFTACT_VERSION, a->case_path, m->name, final_dir,
+             run.out_dir);
+    else
+      sa_log(SA_LOG_INFO, "core", "softact %s: %s (%s scene) -> %s", SOFTACT_VERSION, a->case_path, m->name,
+             final_dir);
+    double t0 = sa_time_now();
+    rc = m->run(scene, &run);
+    double elapsed = sa_time_now() - t0;
+    if (rc == SA_ERR_INTERRUPTED || (sa_interrupted() && rc == 0)) {
+      rc = SA_ERR_INTERRUPTED;
+      sa_log(SA_LOG_WARN, "core", "interrupted by signal %d: results computed so far are kept in %s",
+             sa_interrupt_signal(), final_dir);
+    }
+    if (sa_log_get_level() >= SA_LOG_INFO) sa_timing_report(stderr, elapsed);
+    sa_timing_report(sa_file_stream(lf), elapsed);
+    if (rc && rc != SA_ERR_INTERRUPTED)
+      fprintf(sa_file_stream(lf), "run failed: %s: %s\n", sa_error_string(rc), sa_error_message());
+    sa_log_set_file(NULL);
   }
-  if (sa_log_get_level() >= SA_LOG_INFO) sa_timing_report(stderr, elapsed);
-  sa_timing_report(sa_file_stream(lf), elapsed);
-  if (rc && rc != SA_ERR_INTERRUPTED) {
-    fprintf(sa_file_stream(lf), "run failed: %s: %s\n", sa_error_string(rc), sa_error_message());
-  }
-  sa_log_set_file(NULL);
-  if (rc < 0 && rc != SA_ERR_INTERRUPTED && sa_error_exit_status(rc) == 1) {
-    /* bad input found only while running: leave nothing behind */
-    sa_file_abort(&lf);
-    sa_file_abort_all();
-    static const char *created[] = {"case.ini"};
-    remove_created(run.out_dir, made_dir, created, 1);
+  /* A run that computed something keeps it (done, numerical failure, interrupted). Bad input
+   * found only while running (a .geo syntax error, a missing surface), or a run that never
+   * started, leaves nothing behind, and an earlier run in the folder stays as it was. */
+  int keep = ran && !(rc < 0 && rc != SA_ERR_INTERRUPTED && sa_error_exit_status(rc) == 1);
+  if (keep) {
+    int rc2 = sa_file_commit(&cf);
+    int rc3 = sa_file_commit(&lf);
+    if (!rc) rc = rc2 ? rc2 : rc3;
   } else {
-    int rc2 = sa_file_commit(&lf);
-    if (!rc) rc = rc2;
+    sa_file_abort(&cf);
+    sa_file_abort(&lf);
   }
+  sa_file_abort_all(); /* nothing may be half-written when the folder is swapped or removed */
+  int rc4 = sa_results_close(&res, keep);
+  if (!rc) rc = rc4;
 done:
   sa_file_abort_all();
   if (m && scene) m->destroy(&scene);
@@ -274,7 +290,9 @@ int main(int argc, char **argv) {
         seen[ns++] = tb;
         sa_params_write_markdown(tb, stdout);
       }
-    return 0;
+    int rc = stdout_flush();
+    if (rc) sa_error_print_opt(0);
+    return sa_error_exit_status(rc);
   }
   if (argc < 2) {
     usage(stderr);

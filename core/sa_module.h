@@ -7,7 +7,10 @@
  *                           touching no output; SA_ERR_INPUT names file:line and key
  *   write_resolved(scene,f) every key with its resolved value (defaults filled in)
  *   run(scene, run)         compute, writing into run->out_dir
- *   destroy(&scene)         free; accepts NULL */
+ *   destroy(&scene)         free; accepts NULL
+ *   resumes(scene)          optional: non-zero when the run continues the results already in
+ *                           its folder (a checkpoint resume); it then writes into that folder
+ *                           itself instead of a fresh one (sa_results_open) */
 #ifndef SA_MODULE_H
 #define SA_MODULE_H
 
@@ -29,6 +32,7 @@ typedef struct {
   void (*write_resolved)(const void *scene, FILE *f);
   int (*run)(void *scene, SaRun *run);
   void (*destroy)(void **scene);
+  int (*resumes)(const void *scene); /* may be NULL: never resumes */
 } SaModule;
 
 /* Scenes core provides itself (registered in apps/softact.c like every module's):

@@ -1,7 +1,12 @@
-/* sa_output.c - atomic files, folders and clean interruption (see sa_output.h). */
+/* sa_output.c - atomic files, folders, results folders and clean interruption (see sa_output.h). */
+#define _GNU_SOURCE /* renameat2 (swap a finished run's folder in), nftw */
 #include "sa_output.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <ftw.h>
+#include <limits.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdatomic.h>
@@ -228,4 +233,183 @@ int sa_path_join(const char *dir, const char *name, char *buf) {
                           : snprintf(buf, SA_STR_MAX, "%s", name);
   SA_REQUIRE(n > 0 && n < SA_STR_MAX, SA_ERR_INPUT, "path too long: %s/%s", dir, name);
   return 0;
+}
+
+/* ------------------------------------------------------------------ results folder */
+
+typedef enum { SA_RESULTS_FRESH, SA_RESULTS_STAGED, SA_RESULTS_IN_PLACE } SaResultsMode;
+
+struct SaResults {
+  SaResultsMode mode;
+  char dir[SA_STR_MAX];     /* the results folder */
+  char work[SA_STR_MAX];    /* where the run writes: dir, or its sibling while staged */
+  char created[SA_STR_MAX]; /* FRESH: the topmost folder of dir's path this run made ("" none) */
+};
+
+/* Does folder dir hold a run written by softact (a case.ini starting with the mark)? */
+static int sa_results_is_run(const char *dir) {
+  char path[SA_STR_MAX + 16], head[sizeof SA_RESULTS_MARK] = "";
+  snprintf(path, sizeof path, "%s/case.ini", dir);
+  int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return 0;
+  struct stat st;
+  int ok = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
+           read(fd, head, sizeof head - 1) == (ssize_t)(sizeof head - 1) &&
+           !memcmp(head, SA_RESULTS_MARK, sizeof head - 1);
+  close(fd);
+  return ok;
+}
+
+/* 1 if folder dir has no entries, 0 if it has, -1 if it cannot be read. */
+static int sa_dir_empty(const char *dir) {
+  DIR *d = opendir(dir);
+  if (!d) return -1;
+  int empty = 1;
+  for (struct dirent *e; empty && (e = readdir(d));)
+    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) empty = 0;
+  closedir(d);
+  return empty;
+}
+
+/* Recursive removal for nftw, which passes no user data: hence the statics (single caller at a
+ * time: the end of a run). Never follows a symbolic link or crosses into another file system. */
+static int sa_rm_keep_root, sa_rm_errno;
+static int sa_rm_one(const char *path, const struct stat *st, int flag, struct FTW *ftw) {
+  (void)st, (void)flag;
+  if (ftw->level == 0 && sa_rm_keep_root) return 0;
+  if (remove(path) != 0 && !sa_rm_errno) sa_rm_errno = errno;
+  return 0;
+}
+static int sa_rm_tree(const char *path, int keep_root) {
+  sa_rm_keep_root = keep_root;
+  sa_rm_errno = 0;
+  if (nftw(path, sa_rm_one, 16, FTW_DEPTH | FTW_PHYS | FTW_MOUNT) != 0 && !sa_rm_errno) sa_rm_errno = errno;
+  return sa_rm_errno ? SA_ERROR(SA_ERR_IO, "cannot remove %s: %s", path, strerror(sa_rm_errno)) : 0;
+}
+
+int sa_results_open(const char *dir, int continue_run, SaResults **out) {
+  *out = NULL;
+  size_t n = strlen(dir);
+  /* checked before anything is created: a longer name used to be cut and the cut tree made */
+  SA_REQUIRE(n > 0, SA_ERR_INPUT, "empty results folder name");
+  SA_REQUIRE(n <= SA_RESULTS_DIR_MAX, SA_ERR_INPUT,
+             "results folder name too long: %zu characters, at most %d (room is needed for the file "
+             "names in it): %.80s...", n, SA_RESULTS_DIR_MAX, dir);
+  SaResults *r;
+  SA_CALLOC(r, 1);
+  memcpy(r->dir, dir, n + 1);
+  while (n > 1 && r->dir[n - 1] == '/') r->dir[--n] = 0;
+  int rc = 0;
+  struct stat st;
+  if (lstat(r->dir, &st) == 0 && S_ISLNK(st.st_mode)) { /* act on the folder the link names */
+    char real[PATH_MAX];
+    if (realpath(r->dir, real) && strlen(real) <= SA_RESULTS_DIR_MAX) snprintf(r->dir, sizeof r->dir, "%s", real);
+  }
+  if (stat(r->dir, &st) != 0) {
+    if (errno != ENOENT) { /* ENOTDIR: a file where a parent folder should be */
+      rc = SA_ERROR(errno == ENOTDIR ? SA_ERR_INPUT : SA_ERR_IO, "results folder %s: %s", r->dir, strerror(errno));
+    } else if (continue_run) {
+      rc = SA_ERROR(SA_ERR_INPUT, "results folder %s does not exist: there is no earlier run to "
+                    "continue (run the case without resume first)", r->dir);
+    } else { /* FRESH: note the topmost folder made, so a failed run can remove it again */
+      r->mode = SA_RESULTS_FRESH;
+      char part[SA_STR_MAX];
+      for (size_t i = 1; i <= n && !r->created[0]; i++)
+        if (i == n || r->dir[i] == '/') {
+          snprintf(part, sizeof part, "%.*s", (int)i, r->dir);
+          if (stat(part, &st) != 0) memcpy(r->created, part, i + 1);
+        }
+      rc = sa_mkdir_p(r->dir);
+    }
+  } else if (!S_ISDIR(st.st_mode)) {
+    rc = SA_ERROR(SA_ERR_INPUT, "results folder %s exists and is not a folder", r->dir);
+  } else {
+    int empty = sa_dir_empty(r->dir);
+    if (empty < 0)
+      rc = SA_ERROR(SA_ERR_IO, "cannot read results folder %s: %s", r->dir, strerror(errno));
+    else if (!empty && !sa_results_is_run(r->dir))
+      rc = SA_ERROR(SA_ERR_INPUT, "results folder %s holds files that are not a softact run (no case.ini "
+                    "written by softact); softact does not write into it: choose another folder (--out, "
+                    "[run] out_dir) or empty it", r->dir);
+    else if (continue_run && empty)
+      rc = SA_ERROR(SA_ERR_INPUT, "results folder %s is empty: there is no earlier run to continue (run "
+                    "the case without resume first)", r->dir);
+    else if (continue_run)
+      r->mode = SA_RESULTS_IN_PLACE;
+    else if (empty)
+      r->mode = SA_RESULTS_FRESH;
+    else {
+      const char *base = strrchr(r->dir, '/');
+      base = base ? base + 1 : r->dir;
+      if (!strcmp(base, ".") || !strcmp(base, "..") || !base[0])
+        rc = SA_ERROR(SA_ERR_INPUT, "results folder %s holds an earlier run and is replaced by the new "
+                      "one, so it must be named by its own name (not '.' or '..')", r->dir);
+      else {
+        r->mode = SA_RESULTS_STAGED;
+        snprintf(r->work, sizeof r->work, "%s.incomplete-%ld", r->dir, (long)getpid());
+        if (mkdir(r->work, 0777) != 0)
+          rc = SA_ERROR(SA_ERR_IO, "cannot create folder %s: %s", r->work, strerror(errno));
+      }
+    }
+  }
+  if (rc) {
+    free(r);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  if (r->mode != SA_RESULTS_STAGED) memcpy(r->work, r->dir, sizeof r->work);
+  *out = r;
+  return 0;
+}
+
+const char *sa_results_work(const SaResults *r) { return r->work; }
+const char *sa_results_dir(const SaResults *r) { return r->dir; }
+int sa_results_in_place(const SaResults *r) { return r->mode == SA_RESULTS_IN_PLACE; }
+
+int sa_results_close(SaResults **rp, int keep) {
+  SaResults *r = *rp;
+  if (!r) return 0;
+  *rp = NULL;
+  int rc = 0;
+  if (r->mode == SA_RESULTS_FRESH && !keep) {
+    /* the folder was empty or missing: all it holds is this run's */
+    rc = sa_rm_tree(r->dir, 1);
+    if (!rc && r->created[0]) { /* and the folders made for it, deepest first */
+      char path[SA_STR_MAX];
+      memcpy(path, r->dir, sizeof path);
+      size_t top = strlen(r->created);
+      while (strlen(path) >= top && rmdir(path) == 0) {
+        char *slash = strrchr(path, '/');
+        if (!slash || (size_t)(slash - path) < top) break;
+        *slash = 0;
+      }
+    }
+  } else if (r->mode == SA_RESULTS_STAGED && !keep) {
+    rc = sa_rm_tree(r->work, 0);
+  } else if (r->mode == SA_RESULTS_STAGED) {
+    /* swap the finished folder in, then remove the earlier run (now at the sibling's name);
+     * the earlier run is checked again: the folder may have changed while this one ran */
+    struct stat st;
+    int gone = stat(r->dir, &st) != 0 && errno == ENOENT;
+    if (gone) {
+      if (rename(r->work, r->dir) != 0) rc = SA_ERROR(SA_ERR_IO, "cannot rename %s to %s: %s", r->work, r->dir, strerror(errno));
+    } else if (!sa_results_is_run(r->dir)) {
+      rc = SA_ERROR(SA_ERR_IO, "%s no longer holds a softact run; the results of this run stay in %s",
+                    r->dir, r->work);
+    } else if (renameat2(AT_FDCWD, r->work, AT_FDCWD, r->dir, RENAME_EXCHANGE) == 0) {
+      rc = sa_rm_tree(r->work, 0);
+    } else { /* a file system without an atomic swap: two renames */
+      char old[SA_STR_MAX + 8];
+      snprintf(old, sizeof old, "%s.old", r->work);
+      if (rename(r->dir, old) != 0)
+        rc = SA_ERROR(SA_ERR_IO, "cannot replace %s by %s: %s", r->dir, r->work, strerror(errno));
+      else if (rename(r->work, r->dir) != 0) {
+        rc = SA_ERROR(SA_ERR_IO, "cannot replace %s by %s: %s", r->dir, r->work, strerror(errno));
+        if (rename(old, r->dir) != 0) /* put the earlier run back; else say where it is */
+          rc = SA_ERROR(SA_ERR_IO, "the earlier run in %s is now in %s", r->dir, old);
+      } else
+        rc = sa_rm_tree(old, 0);
+    }
+  }
+  free(r);
+  return rc;
 }

@@ -35,6 +35,29 @@ void sa_signals_child_remove(int slot);
 
 /* mkdir -p. */
 int sa_mkdir_p(const char *path);
+
+/* The results folder of one run. A folder never holds files of two runs, and softact never
+ * writes into or removes a folder it did not make a run folder:
+ *   - dir missing or empty: the run writes into it (creating it and its parents); if the run
+ *     fails on bad input everything it made is removed again.
+ *   - dir holds an earlier softact run (its case.ini starts with SA_RESULTS_MARK): the run
+ *     writes into a fresh sibling "DIR.incomplete-PID" that replaces DIR as a whole when the
+ *     run ends with results (done, numerical failure, interrupted); a run that fails on bad
+ *     input leaves DIR as it was. A run killed outright leaves the sibling behind.
+ *   - continue_run (a checkpoint resume) and dir holds an earlier run: the run writes into DIR
+ *     itself, since it continues those files; the caller keeps DIR's case.ini until the end.
+ *   - anything else (a file, a folder with other content, a name too long): SA_ERR_INPUT,
+ *     before anything is created or changed. */
+#define SA_RESULTS_MARK "; resolved case of"
+#define SA_RESULTS_DIR_MAX 384 /* leaves room in SA_STR_MAX for the sibling suffix and file names */
+typedef struct SaResults SaResults;
+int sa_results_open(const char *dir, int continue_run, SaResults **out);
+const char *sa_results_work(const SaResults *r); /* where the run writes now */
+const char *sa_results_dir(const SaResults *r);  /* the folder the results end up in */
+int sa_results_in_place(const SaResults *r);     /* the run writes into an earlier run's folder */
+/* keep: 1 the run's files become DIR; 0 (bad input found while running) they are removed and
+ * DIR is as before. Commit or abort every SaFile first. Frees *r and sets it NULL. */
+int sa_results_close(SaResults **r, int keep);
 /* Join dir and name into buf (size SA_STR_MAX); error if it does not fit. */
 int sa_path_join(const char *dir, const char *name, char *buf);
 

@@ -2,18 +2,23 @@
  *
  * libinih does not report line numbers to the handler, so the case is read through our own
  * line reader (ini_parse_stream): it counts lines, records section headers (inih calls the
- * handler only for key = value lines, so an empty section would otherwise be invisible) and
- * rejects NUL bytes and control characters (binary garbage) with the line they are on. */
+ * handler only for key = value lines, so an empty section would otherwise be invisible),
+ * rejects NUL bytes and control characters (binary garbage) and repeated sections with the line
+ * they are on, and drops a UTF-8 byte-order mark. It reads whole lines of any length: inih's
+ * buffer is fixed when libinih is built (200 bytes on Debian) and a longer line handed over in
+ * pieces would be parsed as several lines, so the tail of a long comment could set a key. */
 #include "sa_params.h"
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <ini.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "sa_error.h"
@@ -42,6 +47,8 @@ struct SaCase {
   int ns, scap;
   /* reader state */
   FILE *fp;
+  char *lbuf; /* the whole current line (getline) */
+  size_t lcap;
   int line;
   int bad_line;
   char bad_what[128];
@@ -56,9 +63,18 @@ static char *sa_strdup(const char *s) {
   return d;
 }
 
+/* Record a section (line 0: from --set). A section the file names twice is reported like a
+ * repeated key: merging the two silently hides a pasted or half-edited block. */
 static int sa_case_add_section(SaCase *c, const char *name, int line) {
   for (int i = 0; i < c->ns; i++)
-    if (!strcmp(c->s[i].name, name)) return 0;
+    if (!strcmp(c->s[i].name, name)) {
+      if (line > 0 && c->s[i].line > 0 && !c->dup_line) {
+        c->dup_line = line;
+        snprintf(c->dup_msg, sizeof c->dup_msg, "section [%s] given twice (first on line %d)", name,
+                 c->s[i].line);
+      }
+      return 0;
+    }
   if (c->ns == c->scap) {
     int cap = c->scap ? 2 * c->scap : 8;
     SaSection *s = realloc(c->s, (size_t)cap * sizeof *s);
@@ -97,25 +113,52 @@ static int sa_case_add(SaCase *c, const char *section, const char *key, const ch
   return 0;
 }
 
-/* Line reader for ini_parse_stream: like fgets, plus line counting and garbage detection. */
+/* The part of a line inih would act on: a start-of-line comment (';' or '#') is nothing and an
+ * inline comment starts at a ';' after a blank (inih's rules with its default build options).
+ * Returns the length without the comment and trailing blanks. */
+static size_t sa_code_length(const char *s, size_t n) {
+  size_t i = 0;
+  while (i < n && (s[i] == ' ' || s[i] == '\t')) i++;
+  if (i < n && (s[i] == ';' || s[i] == '#')) return 0;
+  for (; i < n; i++)
+    if (s[i] == ';' && i > 0 && isspace((unsigned char)s[i - 1])) break;
+  while (i > 0 && isspace((unsigned char)s[i - 1])) i--;
+  return i;
+}
+
+/* Line reader for ini_parse_stream: reads one whole line, counts it, checks it and hands inih a
+ * line that fits its buffer of size bytes. */
 static char *sa_reader(char *buf, int size, void *stream) {
   SaCase *c = stream;
-  int n = 0, ch = 0;
-  while (n < size - 1 && (ch = fgetc(c->fp)) != EOF) {
-    buf[n++] = (char)ch;
-    if (ch == '\n') break;
-  }
-  if (n == 0) return NULL;
-  buf[n] = 0;
+  ssize_t got = getline(&c->lbuf, &c->lcap, c->fp);
+  if (got <= 0) return NULL;
+  char *s = c->lbuf;
+  size_t n = (size_t)got;
   c->line++;
-  for (int i = 0; i < n && !c->bad_line; i++) {
-    unsigned char u = (unsigned char)buf[i];
-    if (u == 0 || (u < 32 && u != '\t' && u != '\n' && u != '\r') || u == 127) {
+  if (c->line == 1 && n >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3)) s += 3, n -= 3; /* UTF-8 BOM */
+  while (n > 0 && (s[n - 1] == '\n' || s[n - 1] == '\r')) n--;
+  for (size_t i = 0; i < n && !c->bad_line; i++) {
+    unsigned char u = (unsigned char)s[i];
+    if (u == 0 || (u < 32 && u != '\t') || u == 127) {
       c->bad_line = c->line;
-      snprintf(c->bad_what, sizeof c->bad_what, "control byte 0x%02x at column %d (binary file?)", u, i + 1);
+      snprintf(c->bad_what, sizeof c->bad_what, "control byte 0x%02x at column %zu (binary file?)", u, i + 1);
     }
   }
   if (c->bad_line) return NULL; /* stop parsing */
+  /* A line too long for inih's buffer goes in without its comment; if it still does not fit
+   * (a value that long) it is refused, never split. Room is left for the '\n' so that inih
+   * never takes the line for an unfinished one. */
+  if (n > (size_t)size - 2) n = sa_code_length(s, n);
+  if (n > (size_t)size - 2) {
+    c->bad_line = c->line;
+    snprintf(c->bad_what, sizeof c->bad_what,
+             "line too long: at most %d characters before a comment (give a longer value with --set)",
+             size - 2);
+    return NULL;
+  }
+  memcpy(buf, s, n);
+  buf[n] = '\n';
+  buf[n + 1] = 0;
   /* section header: record it with its line */
   char *p = buf;
   while (*p == ' ' || *p == '\t') p++;
@@ -167,17 +210,35 @@ int sa_case_load(const char *path, SaCase **out) {
   char *dot = strrchr(c->stem, '.');
   if (dot && dot != c->stem) *dot = 0;
 
-  c->fp = fopen(path, "rb");
-  if (!c->fp) {
+  /* O_NONBLOCK: opening a FIFO must not wait for a writer; only a regular file is read (a
+   * folder would read as empty, a FIFO or device could block for ever). */
+  int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
     int e = errno;
     sa_case_destroy(&c);
     return SA_ERROR(SA_ERR_INPUT, "%s: cannot open case file: %s", path, strerror(e));
   }
+  struct stat st;
+  const char *what = fstat(fd, &st) != 0 ? "cannot be examined"
+                     : S_ISDIR(st.st_mode) ? "is a directory, not a case file"
+                     : !S_ISREG(st.st_mode) ? "is not a regular file (a FIFO, device or socket); "
+                                              "give a case file"
+                                            : NULL;
+  if (!what && fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK) != 0) what = "cannot be read";
+  if (!what && !(c->fp = fdopen(fd, "rb"))) what = "cannot be read";
+  if (what) {
+    close(fd);
+    sa_case_destroy(&c);
+    return SA_ERROR(SA_ERR_INPUT, "%s: %s", path, what);
+  }
   int rc = ini_parse_stream(sa_reader, c, sa_handler, c);
+  int read_error = ferror(c->fp) ? (errno ? errno : EIO) : 0;
   fclose(c->fp);
   c->fp = NULL;
   int err = 0;
-  if (c->bad_line)
+  if (read_error)
+    err = SA_ERROR(SA_ERR_IO, "%s:%d: cannot read the case file: %s", path, c->line + 1, strerror(read_error));
+  else if (c->bad_line)
     err = SA_ERROR(SA_ERR_INPUT, "%s:%d: %s", path, c->bad_line, c->bad_what);
   else if (rc > 0)
     err = SA_ERROR(SA_ERR_INPUT, "%s:%d: syntax error: expected '[section]', 'key = value' or a comment", path, rc);
@@ -195,17 +256,43 @@ int sa_case_load(const char *path, SaCase **out) {
   return 0;
 }
 
+/* s[0..n) without leading and trailing blanks, into buf of size bytes; -1 if it does not fit. */
+static int sa_trim_copy(const char *s, size_t n, char *buf, size_t size) {
+  while (n > 0 && isspace((unsigned char)*s)) s++, n--;
+  while (n > 0 && isspace((unsigned char)s[n - 1])) n--;
+  if (n >= size) return -1;
+  memcpy(buf, s, n);
+  buf[n] = 0;
+  return 0;
+}
+
 int sa_case_override(SaCase *c, const char *assignment) {
+  /* A case value is one line of text: a line break would be written as-is into the resolved
+   * case.ini and start a new line (a section, a key) there; other control characters have no
+   * business in a value either (the case-file reader refuses them too). */
+  for (const char *p = assignment; *p; p++) {
+    unsigned char u = (unsigned char)*p;
+    SA_REQUIRE(u >= 32 && u != 127, SA_ERR_INPUT,
+               "--set: control character 0x%02x at position %d of '%.*s...': a value is one line of "
+               "printable text", u, (int)(p - assignment) + 1, (int)(p - assignment), assignment);
+  }
   const char *dot = strchr(assignment, '.');
   const char *eq = strchr(assignment, '=');
-  SA_REQUIRE(dot && eq && dot < eq && dot > assignment && eq > dot + 1, SA_ERR_INPUT,
-             "--set %s: expected section.key=value", assignment);
+  SA_REQUIRE(dot && eq && dot < eq, SA_ERR_INPUT, "--set %s: expected section.key=value", assignment);
+  /* blanks around the names and the value are dropped, as in a case file */
   char section[SA_STR_MAX], key[SA_STR_MAX];
-  SA_REQUIRE(dot - assignment < SA_STR_MAX && eq - dot < SA_STR_MAX, SA_ERR_INPUT, "--set %s: too long", assignment);
-  snprintf(section, sizeof section, "%.*s", (int)(dot - assignment), assignment);
-  snprintf(key, sizeof key, "%.*s", (int)(eq - dot - 1), dot + 1);
-  SA_REQUIRE(sa_case_add_section(c, section, 0) == 0 && sa_case_add(c, section, key, eq + 1, 0) == 0,
-             SA_ERR_MEMORY, "out of memory");
+  SA_REQUIRE(sa_trim_copy(assignment, (size_t)(dot - assignment), section, sizeof section) == 0 &&
+                 sa_trim_copy(dot + 1, (size_t)(eq - dot - 1), key, sizeof key) == 0,
+             SA_ERR_INPUT, "--set %.60s...: name longer than %d characters", assignment, SA_STR_MAX - 1);
+  SA_REQUIRE(section[0] && key[0], SA_ERR_INPUT, "--set %s: expected section.key=value", assignment);
+  const char *v = eq + 1; /* the value may be longer than a name (a list) */
+  size_t n = strlen(v);
+  while (n > 0 && isspace((unsigned char)*v)) v++, n--;
+  while (n > 0 && isspace((unsigned char)v[n - 1])) n--;
+  char *value = strndup(v, n);
+  int ok = value && sa_case_add_section(c, section, 0) == 0 && sa_case_add(c, section, key, value, 0) == 0;
+  free(value);
+  SA_REQUIRE(ok, SA_ERR_MEMORY, "out of memory");
   return 0;
 }
 
@@ -218,6 +305,7 @@ void sa_case_destroy(SaCase **cp) {
     free(c->e[i].value);
   }
   for (int i = 0; i < c->ns; i++) free(c->s[i].name);
+  free(c->lbuf);
   free(c->e);
   free(c->s);
   free(c);
@@ -248,6 +336,17 @@ const char *sa_case_origin(const SaCase *c, const char *section, const char *key
   if (!e) return snprintf(buf, SA_STR_MAX, "default"), buf;
   char where[SA_WHERE_MAX];
   snprintf(buf, SA_STR_MAX, "%.*s", SA_STR_MAX - 1, sa_where(c, e->line, where));
+  return buf;
+}
+
+int sa_case_is_set(const SaCase *c, const char *section, const char *key) {
+  return sa_case_find(c, section, key) != NULL;
+}
+
+const char *sa_case_where(const SaCase *c, const char *section, const char *key, char *buf) {
+  SaEntry *e = sa_case_find(c, section, key);
+  char where[SA_WHERE_MAX];
+  snprintf(buf, SA_STR_MAX, "%.*s", SA_STR_MAX - 1, e ? sa_where(c, e->line, where) : c->path);
   return buf;
 }
 
@@ -442,10 +541,23 @@ static int sa_param_set(const SaParamTable *t, const SaParam *p, const char *val
     }
     case SA_PARAM_REAL_LIST: {
       SaRealList *l = (SaRealList *)field;
-      char tmp[SA_STR_MAX * 2];
-      snprintf(tmp, sizeof tmp, "%s", value);
       l->n = 0;
-      for (char *save = NULL, *tok = strtok_r(tmp, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+      const char *s = value;
+      while (isspace((unsigned char)*s)) s++;
+      if (!*s)
+        return SA_ERROR(SA_ERR_INPUT, "%s: [%s] %s: expected a comma-separated list of real numbers", where,
+                        t->section, p->key);
+      /* item by item, in place (no copy to truncate); an empty item ("5,,10", "5,") is an error,
+       * not skipped: it is a typo or a value left out */
+      for (int item = 1;; item++) {
+        const char *comma = strchr(s, ',');
+        size_t len = comma ? (size_t)(comma - s) : strlen(s);
+        char tok[64];
+        if (sa_trim_copy(s, len, tok, sizeof tok)) /* too long for a number: shown cut, refused below */
+          snprintf(tok, sizeof tok, "%.48s...", s);
+        if (!tok[0])
+          return SA_ERROR(SA_ERR_INPUT, "%s: [%s] %s = '%s': item %d of the list is empty (expected real "
+                          "numbers separated by single commas)", where, t->section, p->key, value, item);
         double v;
         if (l->n == SA_LIST_MAX)
           return SA_ERROR(SA_ERR_INPUT, "%s: [%s] %s: more than %d values", where, t->section, p->key, SA_LIST_MAX);
@@ -453,10 +565,9 @@ static int sa_param_set(const SaParamTable *t, const SaParam *p, const char *val
           return SA_ERROR(SA_ERR_INPUT, "%s: [%s] %s = '%s': expected a real number in %s [%s] (or a comma-separated list of them)",
                           where, t->section, p->key, tok, range, p->unit);
         l->v[l->n++] = v;
+        if (!comma) break;
+        s = comma + 1;
       }
-      if (l->n == 0)
-        return SA_ERROR(SA_ERR_INPUT, "%s: [%s] %s: expected a comma-separated list of real numbers", where,
-                        t->section, p->key);
       return 0;
     }
   }

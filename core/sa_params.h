@@ -10,7 +10,7 @@
  *   SA_PARAM_STRING char[SA_STR_MAX]   SA_PARAM_CHOICE char[SA_STR_MAX] (one of `choices`)
  *   SA_PARAM_FILE   char[SA_STR_MAX]   path resolved against the case file's folder (then, for
  *                   defaults and relative paths not found there, the source tree); must exist
- *   SA_PARAM_REAL_LIST SaRealList   comma-separated reals, each within [min, max]
+ *   SA_PARAM_REAL_LIST SaRealList   comma-separated reals, each within [min, max]; no empty item
  */
 #ifndef SA_PARAMS_H
 #define SA_PARAMS_H
@@ -65,10 +65,13 @@ typedef struct {
 /* A parsed case file: (section, key, value) entries with their file:line. */
 typedef struct SaCase SaCase;
 
-/* Parse path [in]. Syntax errors, NUL bytes and files with no section are SA_ERR_INPUT
- * naming file:line. *out [owned] is NULL on failure. */
+/* Parse path [in], a regular file (a folder, FIFO or device is refused). Syntax errors,
+ * control bytes, repeated keys or sections, lines too long to parse and files with no
+ * section are SA_ERR_INPUT naming file:line; a UTF-8 byte-order mark is skipped. *out [owned]
+ * is NULL on failure. */
 int sa_case_load(const char *path, SaCase **out);
-/* Apply a command-line override "section.key=value" (recorded as coming from --set). */
+/* Apply a command-line override "section.key=value" (recorded as coming from --set); blanks
+ * around the names and the value are dropped; control characters are SA_ERR_INPUT. */
 int sa_case_override(SaCase *c, const char *assignment);
 void sa_case_destroy(SaCase **c);
 const char *sa_case_path(const SaCase *c);
@@ -92,5 +95,11 @@ void sa_params_write(const SaParamTable *t, const void *params, FILE *f);
 void sa_params_write_markdown(const SaParamTable *t, FILE *f);
 /* Where a key's value came from ("file.ini:12", "--set", or "default"); buf of SA_STR_MAX. */
 const char *sa_case_origin(const SaCase *c, const char *section, const char *key, char *buf);
+/* Does the case (file or --set) give the key? */
+int sa_case_is_set(const SaCase *c, const char *section, const char *key);
+/* Where a message about the key points: "file.ini:12" or "--set" when the case gives it, else
+ * the case file's path (a check that fails on defaults still names the file); buf of SA_STR_MAX.
+ * A check between two keys points at the one the case gives (sa_case_is_set). */
+const char *sa_case_where(const SaCase *c, const char *section, const char *key, char *buf);
 
 #endif

@@ -237,6 +237,9 @@ static int dem_run(void *scene, SaRun *run) {
   return fn(scene, run);
 }
 
+/* A resumed run continues its own results folder (checkpoint/, the VTK files of the first part). */
+static int dem_resumes(const void *scene) { return ((const DemScene *)scene)->coupling.resume; }
+
 const SaModule dem_module = {
     .name = "dem",
     .trigger = "grains",
@@ -248,4 +251,5 @@ const SaModule dem_module = {
     .write_resolved = dem_write_resolved,
     .run = dem_run,
     .destroy = dem_destroy,
+    .resumes = dem_resumes,
 };

@@ -321,43 +321,57 @@ static int hmsa_check(const SaCase *c, void **out) {
   if (rc) { free(s); return sa_error_push(rc, __func__, __FILE__, __LINE__); }
   const HmsaParams *p = &s->p;
   char where[SA_STR_MAX];
+  /* A check between two keys points at the one the case gives and marks a default as such:
+   * a conflict with a default is still the user's line (sa_case_where falls back to the file). */
+#define SET(sec, key) sa_case_is_set(c, sec, key)
+#define DEF(sec, key) (SET(sec, key) ? "" : " (default)")
   for (int i = 0; i < p->sigma.n; i++)
     if (fabs(fabs(p->sigma.v[i]) - 1.0) > 0) {
       rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa] sigma: %g must be +1 or -1 (sign of the sq load)",
-                    sa_case_origin(c, "hmsa", "sigma", where), p->sigma.v[i]);
+                    sa_case_where(c, "hmsa", "sigma", where), p->sigma.v[i]);
       goto fail;
     }
   if (!strcmp(p->model, "pc")) {
     for (int i = 0; i < p->mu_c.n; i++)
       for (int j = 0; j < p->mu_e.n; j++)
         if (p->mu_c.v[i] + p->mu_e.v[j] <= 0) {
-          rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa] mu_c = mu_e = 0 leaves no elastic stiffness",
-                        sa_case_origin(c, "hmsa", "mu_c", where));
+          rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa] mu_c = %g%s with mu_e = %g%s leaves no elastic "
+                        "stiffness (mu_c + mu_e must be > 0)",
+                        sa_case_where(c, "hmsa", SET("hmsa", "mu_c") ? "mu_c" : "mu_e", where),
+                        p->mu_c.v[i], DEF("hmsa", "mu_c"), p->mu_e.v[j], DEF("hmsa", "mu_e"));
           goto fail;
         }
   }
   int periodic = strcmp(p->loading, "const") != 0;
   if ((!strcmp(p->analysis, "poincare") || !strcmp(p->analysis, "sweep")) && !periodic) {
-    rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa] analysis = %s needs a periodic loading (sq or lin)",
-                  sa_case_origin(c, "hmsa", "loading", where), p->analysis);
+    rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa] analysis = %s needs a periodic loading (sq or lin), not "
+                  "loading = %s%s", sa_case_where(c, "hmsa", SET("hmsa", "loading") ? "loading" : "analysis", where),
+                  p->analysis, p->loading, DEF("hmsa", "loading"));
     goto fail;
   }
   if (!(s->sw.omega_max > s->sw.omega_min)) {
-    rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa_sweep] omega_max = %g must exceed omega_min = %g",
-                  sa_case_origin(c, "hmsa_sweep", "omega_max", where), s->sw.omega_max,
-                  s->sw.omega_min);
+    rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa_sweep] omega_max = %g%s must exceed omega_min = %g%s",
+                  sa_case_where(c, "hmsa_sweep", SET("hmsa_sweep", "omega_max") ? "omega_max" : "omega_min", where),
+                  s->sw.omega_max, DEF("hmsa_sweep", "omega_max"), s->sw.omega_min, DEF("hmsa_sweep", "omega_min"));
     goto fail;
   }
   if (p->dt_out > p->t_end) {
-    rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa] dt_out = %g exceeds t_end = %g",
-                  sa_case_origin(c, "hmsa", "dt_out", where), p->dt_out, p->t_end);
+    if (SET("hmsa", "dt_out") || !SET("hmsa", "t_end"))
+      rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa] dt_out = %g exceeds t_end = %g%s",
+                    sa_case_where(c, "hmsa", "dt_out", where), p->dt_out, p->t_end, DEF("hmsa", "t_end"));
+    else
+      rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa] t_end = %g is below the default dt_out = %g (set dt_out too)",
+                    sa_case_where(c, "hmsa", "t_end", where), p->t_end, p->dt_out);
     goto fail;
   }
   if (p->t_end / p->dt_out > 5e7) {
-    rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa] t_end/dt_out = %g rows is too many",
-                  sa_case_origin(c, "hmsa", "dt_out", where), p->t_end / p->dt_out);
+    rc = SA_ERROR(SA_ERR_INPUT, "%s: [hmsa] t_end = %g%s / dt_out = %g%s = %g rows is too many (at most 5e7)",
+                  sa_case_where(c, "hmsa", SET("hmsa", "dt_out") ? "dt_out" : "t_end", where), p->t_end,
+                  DEF("hmsa", "t_end"), p->dt_out, DEF("hmsa", "dt_out"), p->t_end / p->dt_out);
     goto fail;
   }
+#undef SET
+#undef DEF
   rc = check_sizes(c, s);
   if (!rc) rc = build_variants(s);
   if (rc) goto fail;
