@@ -60,9 +60,8 @@ static void usage(FILE *f) {
   for (int i = 0; modules[i]; i++) fprintf(f, "  [%s]  %s\n", modules[i]->trigger, modules[i]->help);
   fprintf(f,
           "\nexit status: 0 ok, 1 bad input (case file, arguments), 2 numerical failure\n"
-          "(no convergence, inverted element, limit point, NaN), 3 interrupted (SIGINT/SIGTERM/\n"
-          "SIGHUP/SIGPIPE;\n"
-          "results computed so far are kept), 4 I/O, memory or library failure.\n");
+          "(no convergence, inverted element, limit point, NaN), 3 interrupted (SIGINT, SIGTERM,\n"
+          "SIGHUP, SIGPIPE; results computed so far are kept), 4 I/O, memory or library failure.\n");
 }
 
 /* Is table t among the first n of list (tables shared by two scenes are listed once)? */
