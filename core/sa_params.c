@@ -152,7 +152,9 @@ static int sa_handler(void *user, const char *section, const char *key, const ch
   return sa_case_add(c, section, key, value, c->line) == 0;
 }
 
-int sa_case_load(const char *path, SaCase **out) {
+/* Parse the file at path, or, when text is not NULL, the len bytes at text (named path in
+ * messages): both go through the same line reader. */
+static int sa_case_read(const char *path, const char *text, size_t len, SaCase **out) {
   *out = NULL;
   SaCase *c;
   SA_CALLOC(c, 1);
@@ -167,7 +169,7 @@ int sa_case_load(const char *path, SaCase **out) {
   char *dot = strrchr(c->stem, '.');
   if (dot && dot != c->stem) *dot = 0;
 
-  c->fp = fopen(path, "rb");
+  c->fp = text ? fmemopen((void *)text, len, "rb") : fopen(path, "rb");
   if (!c->fp) {
     int e = errno;
     sa_case_destroy(&c);
@@ -193,6 +195,12 @@ int sa_case_load(const char *path, SaCase **out) {
   }
   *out = c;
   return 0;
+}
+
+int sa_case_load(const char *path, SaCase **out) { return sa_case_read(path, NULL, 0, out); }
+
+int sa_case_load_mem(const char *name, const char *text, size_t len, SaCase **out) {
+  return sa_case_read(name, text ? text : "", len, out);
 }
 
 int sa_case_override(SaCase *c, const char *assignment) {
