@@ -451,6 +451,9 @@ static int sa_param_set(const SaParamTable *t, const SaParam *p, const char *val
     case SA_PARAM_REAL_LIST: {
       SaRealList *l = (SaRealList *)field;
       char tmp[SA_STR_MAX * 2];
+      if (strlen(value) >= sizeof tmp) /* a longer --set value was cut silently */
+        return SA_ERROR(SA_ERR_INPUT, "%s: [%s] %s: value longer than %d characters", where, t->section,
+                        p->key, (int)sizeof tmp - 1);
       snprintf(tmp, sizeof tmp, "%s", value);
       l->n = 0;
       for (char *save = NULL, *tok = strtok_r(tmp, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
@@ -530,7 +533,7 @@ static void sa_value_text(const SaParam *p, const void *params, char *buf, size_
 void sa_params_write(const SaParamTable *t, const void *params, FILE *f) {
   fprintf(f, "[%s]\n", t->section);
   for (int i = 0; i < t->nparams; i++) {
-    char v[2 * SA_STR_MAX];
+    char v[4 * SA_STR_MAX]; /* SA_LIST_MAX values of up to 24 characters + ", " */
     sa_value_text(&t->params[i], params, v, sizeof v);
     fprintf(f, "%s = %s", t->params[i].key, v);
     int pad = 28 - (int)(strlen(t->params[i].key) + strlen(v) + 3);

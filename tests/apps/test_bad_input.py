@@ -22,6 +22,8 @@ TABLE = [
     ("no_scene", "[run]\ntitle = x\n", [], ["no scene section found"]),
     ("bad_set_value", HMSA, ["hmsa.eta=oops"], ["--set", "eta", "expected a real number"]),
     ("bad_set_syntax", HMSA, ["hmsa_eta"], ["--set", "section.key=value"]),
+    ("long_set_list", HMSA, ["hmsa.S=" + ",".join(["-1.23456789012346e-300"] * 64)],
+     ["--set", "S", "value longer than 1023 characters"]),
     ("bad_run_key", "[run]\nvtk_format = xml\n" + HMSA, [], [":2:", "vtk_format", "expected one of binary|ascii"]),
     ("two_scenes", HMSA + "[mesh]\n", [], ["describes one scene"]),
     ("missing_mesh_file", "[mesh]\ngeo = no_such_mesh.geo\n", [], [":2:", "geo", "no_such_mesh.geo", "not found"]),
