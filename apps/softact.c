@@ -14,35 +14,11 @@
 #include "sa_params.h"
 #include "sa_run.h"
 
-#ifdef SOFTACT_HAVE_HMSA
-#include "hmsa.h"
-#endif
-#ifdef SOFTACT_HAVE_FEM
-#include "fem.h"
-#include "fem_fill.h"
-#endif
-#ifdef SOFTACT_HAVE_DEM
-#include "dem_module.h"
-#endif
+#include "softact_scene.h"
 
 #ifndef SOFTACT_VERSION
 #define SOFTACT_VERSION "unknown"
 #endif
-
-static const SaModule *const modules[] = {
-#ifdef SOFTACT_HAVE_HMSA
-    &hmsa_module,
-#endif
-#ifdef SOFTACT_HAVE_FEM
-    &fem_module,
-    &fem_triaxial_module,
-    &fem_footing_module,
-#endif
-#ifdef SOFTACT_HAVE_DEM
-    &dem_module,
-#endif
-    &sa_compare_module,
-    NULL};
 
 static void usage(FILE *f) {
   fprintf(f,
@@ -57,42 +33,12 @@ static void usage(FILE *f) {
           "  check   validate the case and print it fully resolved (defaults filled in); run nothing\n"
           "\n"
           "scenes (the section that selects each):\n");
-  for (int i = 0; modules[i]; i++) fprintf(f, "  [%s]  %s\n", modules[i]->trigger, modules[i]->help);
+  for (int i = 0; softact_modules[i]; i++)
+    fprintf(f, "  [%s]  %s\n", softact_modules[i]->trigger, softact_modules[i]->help);
   fprintf(f,
           "\nexit status: 0 ok, 1 bad input (case file, arguments), 2 numerical failure\n"
           "(no convergence, inverted element, limit point, NaN), 3 interrupted (SIGINT, SIGTERM,\n"
           "SIGHUP, SIGPIPE; results computed so far are kept), 4 I/O, memory or library failure.\n");
-}
-
-/* Is table t among the first n of list (tables shared by two scenes are listed once)? */
-static int table_seen(const SaParamTable *const *list, int n, const SaParamTable *t) {
-  for (int i = 0; i < n; i++)
-    if (list[i] == t) return 1;
-  return 0;
-}
-
-/* Which module's scene the case describes: exactly one trigger section must be present, except
- * that a module extending another (FEM-DEM reads the actuator's [mesh]) wins over it. */
-static int select_module(const SaCase *c, const SaModule **out) {
-  *out = NULL;
-  char names[256] = "";
-  for (int i = 0; modules[i]; i++) {
-    size_t k = strlen(names);
-    snprintf(names + k, sizeof names - k, "%s[%s]", i ? " or " : "", modules[i]->trigger);
-    if (!sa_case_has_section(c, modules[i]->trigger)) continue;
-    const SaModule *m = modules[i];
-    if (*out && m->extends && !strcmp(m->extends, (*out)->trigger)) {
-      *out = m; /* m extends the one found so far */
-      continue;
-    }
-    if (*out && (*out)->extends && !strcmp((*out)->extends, m->trigger)) continue;
-    SA_REQUIRE(!*out, SA_ERR_INPUT, "%s: the case has both [%s] and [%s]; a case file describes one scene",
-               sa_case_path(c), (*out)->trigger, m->trigger);
-    *out = m;
-  }
-  SA_REQUIRE(*out, SA_ERR_INPUT, "%s: no scene section found: a case needs %s", sa_case_path(c),
-             names[0] ? names : "a module (none built)");
-  return 0;
 }
 
 typedef struct {
@@ -137,15 +83,6 @@ static int parse_args(int argc, char **argv, Args *a) {
   return 0;
 }
 
-/* Write the resolved case (run table + module tables) to f. */
-static void write_resolved(FILE *f, const SaCase *c, const SaRunParams *rp, const SaModule *m, const void *scene) {
-  /* the mark is how a later run recognises this folder as a softact run (sa_output.h) */
-  fprintf(f, SA_RESULTS_MARK " %s (softact %s): every key with its value, defaults filled in\n\n",
-          sa_case_path(c), SOFTACT_VERSION);
-  sa_params_write(&sa_run_table, rp, f);
-  m->write_resolved(scene, f);
-}
-
 /* Flush standard output and report a failed write (a full disk, a closed pipe): a listing that
  * was cut must not exit 0. */
 static int stdout_flush(void) {
@@ -162,30 +99,11 @@ static int run_case(const Args *a) {
   memset(&run, 0, sizeof run);
   int rc = sa_case_load(a->case_path, &c);
   for (int i = 0; !rc && i < a->nsets; i++) rc = sa_case_override(c, a->sets[i]);
-  if (!rc) { /* unknown sections/keys first, against every module, so a typo in the scene
-                section is reported as a typo rather than as a missing scene */
-    const SaParamTable *all[128];
-    int na = 0;
-    all[na++] = &sa_run_table;
-    for (int i = 0; modules[i]; i++)
-      for (int t = 0; t < modules[i]->ntables && na < 128; t++)
-        if (!table_seen(all, na, modules[i]->tables[t])) all[na++] = modules[i]->tables[t];
-    rc = sa_case_check_known(c, all, na);
-  }
-  if (!rc) rc = select_module(c, &m);
-  if (!rc) {
-    const SaParamTable *tables[64];
-    int nt = 0;
-    tables[nt++] = &sa_run_table;
-    for (int i = 0; i < m->ntables && nt < 64; i++) tables[nt++] = m->tables[i];
-    rc = sa_case_check_known(c, tables, nt);
-  }
-  if (!rc) rc = sa_params_load(&sa_run_table, c, &run.params);
-  if (!rc) rc = m->check(c, &scene);
+  if (!rc) rc = softact_case_validate(c, &run.params, &m, &scene);
   if (rc) goto done;
 
   if (!strcmp(a->command, "check")) {
-    write_resolved(stdout, c, &run.params, m, scene);
+    softact_write_resolved(stdout, c, &run.params, m, scene);
     rc = stdout_flush();
     goto done;
   }
@@ -213,7 +131,7 @@ static int run_case(const Args *a) {
   rc = sa_run_path(&run, "case.ini", path);
   if (!rc) rc = sa_file_open(path, &cf);
   if (!rc) {
-    write_resolved(sa_file_stream(cf), c, &run.params, m, scene);
+    softact_write_resolved(sa_file_stream(cf), c, &run.params, m, scene);
     if (!in_place) rc = sa_file_commit(&cf);
   }
   if (!rc) rc = sa_run_path(&run, "softact.log", path);
@@ -280,16 +198,7 @@ int main(int argc, char **argv) {
     }
   }
   if (argc >= 2 && !strcmp(argv[1], "keys")) {
-    const SaParamTable *seen[128];
-    int ns = 0;
-    sa_params_write_markdown(&sa_run_table, stdout);
-    for (int i = 0; modules[i]; i++)
-      for (int t = 0; t < modules[i]->ntables && ns < 128; t++) {
-        const SaParamTable *tb = modules[i]->tables[t];
-        if (table_seen(seen, ns, tb)) continue; /* shared by two scenes: listed once */
-        seen[ns++] = tb;
-        sa_params_write_markdown(tb, stdout);
-      }
+    softact_write_keys(stdout);
     int rc = stdout_flush();
     if (rc) sa_error_print_opt(0);
     return sa_error_exit_status(rc);

@@ -195,7 +195,9 @@ static int sa_handler(void *user, const char *section, const char *key, const ch
   return sa_case_add(c, section, key, value, c->line) == 0;
 }
 
-int sa_case_load(const char *path, SaCase **out) {
+/* Parse the file at path, or, when text is not NULL, the len bytes at text (named path in
+ * messages): both go through the same line reader. */
+static int sa_case_read(const char *path, const char *text, size_t len, SaCase **out) {
   *out = NULL;
   SaCase *c;
   SA_CALLOC(c, 1);
@@ -210,26 +212,37 @@ int sa_case_load(const char *path, SaCase **out) {
   char *dot = strrchr(c->stem, '.');
   if (dot && dot != c->stem) *dot = 0;
 
-  /* O_NONBLOCK: opening a FIFO must not wait for a writer; only a regular file is read (a
-   * folder would read as empty, a FIFO or device could block for ever). */
-  int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) {
+  /* From memory (tests, the fuzzer): the same reader on fmemopen. From a file: O_NONBLOCK, so
+   * that opening a FIFO does not wait for a writer; only a regular file is read (a folder would
+   * read as empty, a FIFO or device could block for ever). */
+  if (text) {
+    c->fp = fmemopen((void *)text, len, "rb");
+    if (!c->fp) {
+      int e = errno;
+      sa_case_destroy(&c);
+      return SA_ERROR(SA_ERR_INPUT, "%s: cannot open case text: %s", path, strerror(e));
+    }
+  }
+  int fd = text ? -1 : open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (!text && fd < 0) {
     int e = errno;
     sa_case_destroy(&c);
     return SA_ERROR(SA_ERR_INPUT, "%s: cannot open case file: %s", path, strerror(e));
   }
-  struct stat st;
-  const char *what = fstat(fd, &st) != 0 ? "cannot be examined"
-                     : S_ISDIR(st.st_mode) ? "is a directory, not a case file"
-                     : !S_ISREG(st.st_mode) ? "is not a regular file (a FIFO, device or socket); "
-                                              "give a case file"
-                                            : NULL;
-  if (!what && fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK) != 0) what = "cannot be read";
-  if (!what && !(c->fp = fdopen(fd, "rb"))) what = "cannot be read";
-  if (what) {
-    close(fd);
-    sa_case_destroy(&c);
-    return SA_ERROR(SA_ERR_INPUT, "%s: %s", path, what);
+  if (!text) {
+    struct stat st;
+    const char *what = fstat(fd, &st) != 0 ? "cannot be examined"
+                       : S_ISDIR(st.st_mode) ? "is a directory, not a case file"
+                       : !S_ISREG(st.st_mode) ? "is not a regular file (a FIFO, device or socket); "
+                                                "give a case file"
+                                              : NULL;
+    if (!what && fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK) != 0) what = "cannot be read";
+    if (!what && !(c->fp = fdopen(fd, "rb"))) what = "cannot be read";
+    if (what) {
+      close(fd);
+      sa_case_destroy(&c);
+      return SA_ERROR(SA_ERR_INPUT, "%s: %s", path, what);
+    }
   }
   int rc = ini_parse_stream(sa_reader, c, sa_handler, c);
   int read_error = ferror(c->fp) ? (errno ? errno : EIO) : 0;
@@ -254,6 +267,12 @@ int sa_case_load(const char *path, SaCase **out) {
   }
   *out = c;
   return 0;
+}
+
+int sa_case_load(const char *path, SaCase **out) { return sa_case_read(path, NULL, 0, out); }
+
+int sa_case_load_mem(const char *name, const char *text, size_t len, SaCase **out) {
+  return sa_case_read(name, text ? text : "", len, out);
 }
 
 /* s[0..n) without leading and trailing blanks, into buf of size bytes; -1 if it does not fit. */
@@ -633,7 +652,7 @@ static void sa_value_text(const SaParam *p, const void *params, char *buf, size_
 void sa_params_write(const SaParamTable *t, const void *params, FILE *f) {
   fprintf(f, "[%s]\n", t->section);
   for (int i = 0; i < t->nparams; i++) {
-    char v[2 * SA_STR_MAX];
+    char v[4 * SA_STR_MAX]; /* SA_LIST_MAX values of up to 24 characters + ", " */
     sa_value_text(&t->params[i], params, v, sizeof v);
     fprintf(f, "%s = %s", t->params[i].key, v);
     int pad = 28 - (int)(strlen(t->params[i].key) + strlen(v) + 3);

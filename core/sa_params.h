@@ -70,6 +70,10 @@ typedef struct SaCase SaCase;
  * section are SA_ERR_INPUT naming file:line; a UTF-8 byte-order mark is skipped. *out [owned]
  * is NULL on failure. */
 int sa_case_load(const char *path, SaCase **out);
+/* The same from memory: the len bytes at text [in] (may hold NUL bytes, which are rejected
+ * like in a file), named name [in] in messages (its folder is where relative [FILE] paths are
+ * looked up). For tests and the fuzzer (tests/fuzz/). */
+int sa_case_load_mem(const char *name, const char *text, size_t len, SaCase **out);
 /* Apply a command-line override "section.key=value" (recorded as coming from --set); blanks
  * around the names and the value are dropped; control characters are SA_ERR_INPUT. */
 int sa_case_override(SaCase *c, const char *assignment);

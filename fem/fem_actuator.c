@@ -245,7 +245,7 @@ static int check_law_entries(const char *map, char *bad, size_t nbad) {
     if (*q && (*q != ',' || depth > 0)) continue;
     int last = *q == '\0';
     *q = '\0';
-    while (*tok == ' ') tok++;
+    while (*tok == ' ' || *tok == '\t') tok++; /* as region_set trims, or the entry is skipped */
     char *colon = strchr(tok, ':');
     if (colon && nn < 64) {
       char *r = colon;

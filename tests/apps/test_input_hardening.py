@@ -89,6 +89,14 @@ with tempfile.TemporaryDirectory() as tmp:
     # --- --set "hmsa.model = pc" used to keep the blanks in the key ("unknown key 'model '")
     expect("set_blanks", run(["check", c, "--set", " hmsa . model =  pc "]), 0, stdout_has=["model = pc "])
 
+    # --- a list given by --set longer than 1023 characters used to be cut silently (64 values
+    # set, 43 kept): every value is kept, and the resolved case lists all of them
+    r = run(["check", case("statics_list", STATICS), "--set", "hmsa.S=" + ",".join(["-1.23456789012346e-300"] * 64)])
+    expect("long_set_list", r, 0)
+    line = [l for l in r.stdout.splitlines() if l.startswith("S ")]
+    if not line or line[0].split(";")[0].count("e-300") != 64:
+        fails.append(f"long_set_list: resolved S does not hold the 64 values: {line[:1]}")
+
     # --- an error found from a default used to name no file or line ("default: dt_out exceeds t_end")
     c = case("t_end_below_default", HMSA + "t_end = 0.005\n")
     expect("error_from_default", run(["check", c]), 1, [c + ":3:", "t_end = 0.005", "default dt_out = 0.01"])

@@ -4,7 +4,8 @@
  *    the built-in set "solid:limit" with the same values (one path for the numbers).
  * 2. "solid:mohr_coulomb(...)" gives the law object with its parameters in the law's order.
  * 3. Bad entries are input errors naming the case key, the region and what is wrong: unknown
- *    law (listing the registered ones), missing parameter, out-of-range value, missing rho. */
+ *    law (listing the registered ones), missing parameter, out-of-range value, missing rho.
+ * 4. fem_actuator_load (what `softact check` runs) finds them already, also after a tab. */
 #include <stdio.h>
 #include <string.h>
 #include <stdlib.h>
@@ -45,6 +46,23 @@ static int bad(const char *path, const char *regions, const FemMesh *m, const ch
   return !ok;
 }
 
+/* fem_actuator_load alone (no mesh: `softact check`) rejects regions with needle */
+static int check_rejects(const char *path, const char *regions, const char *needle) {
+  FILE *f = fopen(path, "w");
+  fprintf(f, "[mesh]\n[material]\nregions = %s\n", regions);
+  fclose(f);
+  SaCase *c;
+  TU_CHECK(sa_case_load(path, &c));
+  FemActuatorCase a;
+  int rc = fem_actuator_load(c, &a);
+  sa_case_destroy(&c);
+  const char *msg = sa_error_message();
+  int ok = rc == SA_ERR_INPUT && msg && strstr(msg, needle);
+  if (!ok) fprintf(stderr, "check of '%s': rc %d, message '%s' lacks '%s'\n", regions, rc, msg, needle);
+  sa_error_clear();
+  return !ok;
+}
+
 int main(void) {
   if (!getenv("SA_TEST_VERBOSE")) sa_log_set_level(SA_LOG_ERROR);
   SmeshBlock blk = {{1, 1, 1}, map_cube, NULL, {"x0", "x1", "y0", "y1", "z0", "z1"}};
@@ -71,6 +89,8 @@ int main(void) {
   fails += bad(path, "solid:mohr_coulomb(young=2e7 poisson=0.3 friction_angle=95 cohesion=1 "
                      "dilation_angle=3 rho=1)", m, "friction_angle = 95 deg must be in [0, 90)");
   fails += bad(path, "solid:stiff_neohooke(e = 1e9 nu = 0.3)", m, "rho");
+  fails += check_rejects(path, "a:silicone, solid:stiff_neohooke(e = 1e9 rho = 1)", "'nu' missing");
+  fails += check_rejects(path, "a:silicone,\tsolid:stiff_neohooke(e = 1e9 rho = 1)", "'nu' missing");
   remove(path);
   smesh_free(&m);
   return fails ? 1 : 0;
