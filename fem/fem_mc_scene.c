@@ -497,6 +497,15 @@ static int build(Mc *o) {
   double mv = 0;
   int nmv = 0;
   if (!rc && !getenv("MC_NOSNAP")) rc = snap_to_master(fill, "fill_cavity", o->m, P->wall_surface, 0.25 * P->fill_h, &mv, &nmv);
+  /* a start in contact: a bed node at a gap of +1e-19 m would be out of contact, and the fill,
+   * held only by frictionless contacts, would float in the first iterate. The fill is scaled
+   * radially by 1 + 1e-6 and lowered by 10 nm: every surface node starts ~6-10 nm deep (a contact
+   * pressure of ~0.1 % of the settled stress), the fill itself stays stress-free */
+  for (int A = 0; !rc && A < fill->nnodes; A++) {
+    fill->xyz[3 * A] *= 1 + 1e-6;
+    fill->xyz[3 * A + 1] *= 1 + 1e-6;
+    fill->xyz[3 * A + 2] -= 1e-8;
+  }
   if (!rc)
     sa_log(SA_LOG_INFO, "mc", "fill: %d nodes, %d elements; %d cavity-side nodes moved onto the "
            "faceted cavity wall (largest move %.1f um)", fill->nnodes, fill->nelem, nmv, 1e6 * mv);
@@ -535,8 +544,9 @@ static int build(Mc *o) {
   FemContactParams cp = fem_contact_params_default();
   cp.penalty = P->penalty * sc->fill.young / P->fill_h;
   cp.penalty_tangent = P->penalty_tangent * cp.penalty;
-  cp.search_radius = 0.5 * P->fill_h;
-  cp.friction = 0; /* geostatic stage: frictionless */
+  cp.search_radius = 2 * P->fill_h;
+  cp.smooth_normals = getenv("MC_FACET") ? 0 : 1;
+  cp.friction = getenv("MC_GF") ? atof(getenv("MC_GF")) : 0; /* geostatic stage: frictionless */
   SA_CHECK(fem_contact_create(m, "fill_cavity", &cp, &o->c[C_WALL]));
   SA_CHECK(fem_contact_set_master(o->c[C_WALL], P->wall_surface));
   SA_CHECK(fem_contact_create(m, "fill_barrel", &cp, &o->c[C_BARREL]));
