@@ -73,7 +73,7 @@ typedef struct {
   char fill_geo[SA_STR_MAX], wall_surface[SA_STR_MAX], fixed_surface[SA_STR_MAX];
   char tip_surface[SA_STR_MAX];
   double fill_h, fill_height, barrel_length, stroke, penalty, penalty_tangent;
-  int n_steps, max_cuts, vtk_every, gravity;
+  int n_steps, max_cuts, vtk_every, gravity, smooth_normals;
 } McParams;
 
 #define P(f) offsetof(McParams, f)
@@ -96,6 +96,9 @@ static const SaParam mc_params[] = {
      "contact penalty alpha: eps_N = alpha [fill] young / fill_h for every contact pair"},
     {"penalty_tangent", SA_PARAM_REAL, P(penalty_tangent), "-", "1", 0, 1e3, SA_MIN_OPEN, NULL,
      "tangential penalty eps_T / eps_N"},
+    {"smooth_normals", SA_PARAM_BOOL, P(smooth_normals), "-", "1", 0, 0, 0, NULL,
+     "cavity contact: interpolated vertex normals of the faceted wall (0: facet normals, whose "
+     "jumps at the facet edges stall Newton in this scene)"},
     {"gravity", SA_PARAM_BOOL, P(gravity), "-", "1", 0, 0, 0, NULL,
      "geostatic stage: gravity (-z, 9.81 m/s^2) on every body before the stroke"},
     {"vtk_every", SA_PARAM_INT, P(vtk_every), "-", "5", 0, 100000, 0, NULL,
@@ -429,14 +432,14 @@ static int output_row(Mc *o) {
     o->nyield += o->yield[e] > 0;
   }
   double row[N_COLS] = {o->d, ang, o->force, Vd, V / o->V_cav0 - 1, dVc, dVf, dVov,
-                        -st[C_BARREL].force[2], -st[C_WALL].force[2], st[C_WALL].normal_force,
+                        st[C_BARREL].force[2], st[C_WALL].force[2], st[C_WALL].normal_force,
                         o->balance_f, o->balance_v, st[C_WALL].max_penetration,
                         o->epsp_max, o->nyield, o->newton, o->cuts, sa_time_now() - o->t_start};
   SA_CHECK(sa_csv_row(o->csv, row));
-  sa_log(SA_LOG_INFO, "mc", "piston %6.3f mm: angle %7.3f deg, force %8.3f N (barrel %.3f, cavity "
-         "%.3f N), cavity %+.4f %%, displaced %.1f mm^3, fill dV %+.2f mm^3; balance force %.1e "
+  sa_log(SA_LOG_INFO, "mc", "piston %6.3f mm: angle %7.3f deg, force %8.3f N (upward on the fill: barrel "
+         "%.3f, cavity %.3f N), cavity %+.4f %%, displaced %.1f mm^3, fill dV %+.2f mm^3; balance force %.1e "
          "volume %.1e; eps_p max %.3g, %d yielded elements; %d Newton, %d cuts", 1e3 * o->d, ang,
-         o->force, -st[C_BARREL].force[2], -st[C_WALL].force[2], 100 * (V / o->V_cav0 - 1),
+         o->force, st[C_BARREL].force[2], st[C_WALL].force[2], 100 * (V / o->V_cav0 - 1),
          Vd * 1e9, dVf * 1e9, o->balance_f, o->balance_v, o->epsp_max, o->nyield, o->newton,
          o->cuts);
   return 0;
@@ -496,7 +499,7 @@ static int build(Mc *o) {
   int rc = fem_mesh_require(fill, 1, freg, 3, fill_surfs);
   double mv = 0;
   int nmv = 0;
-  if (!rc && !getenv("MC_NOSNAP")) rc = snap_to_master(fill, "fill_cavity", o->m, P->wall_surface, 0.25 * P->fill_h, &mv, &nmv);
+  if (!rc) rc = snap_to_master(fill, "fill_cavity", o->m, P->wall_surface, 0.25 * P->fill_h, &mv, &nmv);
   /* a start in contact: a bed node at a gap of +1e-19 m would be out of contact, and the fill,
    * held only by frictionless contacts, would float in the first iterate. The fill is scaled
    * radially by 1 + 1e-6 and lowered by 10 nm: every surface node starts ~6-10 nm deep (a contact
@@ -545,8 +548,8 @@ static int build(Mc *o) {
   cp.penalty = P->penalty * sc->fill.young / P->fill_h;
   cp.penalty_tangent = P->penalty_tangent * cp.penalty;
   cp.search_radius = 2 * P->fill_h;
-  cp.smooth_normals = getenv("MC_FACET") ? 0 : 1;
-  cp.friction = getenv("MC_GF") ? atof(getenv("MC_GF")) : 0; /* geostatic stage: frictionless */
+  cp.smooth_normals = P->smooth_normals;
+  cp.friction = 0; /* geostatic stage: frictionless */
   SA_CHECK(fem_contact_create(m, "fill_cavity", &cp, &o->c[C_WALL]));
   SA_CHECK(fem_contact_set_master(o->c[C_WALL], P->wall_surface));
   SA_CHECK(fem_contact_create(m, "fill_barrel", &cp, &o->c[C_BARREL]));
