@@ -714,8 +714,9 @@ static int mc_run(void *scene, SaRun *run) {
     if (rc_stroke < 0) rc = rc_stroke;
   }
   t_stroke = sa_time_now() - t_stroke;
+  /* commit what was computed even if a stage failed or the run was interrupted */
   if (o.csv) {
-    int r2 = rc ? (sa_csv_abort(&o.csv), 0) : sa_csv_commit(&o.csv);
+    int r2 = sa_csv_commit(&o.csv);
     if (!rc) rc = r2;
   }
   sa_vtk_series_close(&o.series);
