@@ -26,7 +26,7 @@ exe, case = sys.argv[1], sys.argv[2]
 # at zero confinement: without gravity the first push inverts its top elements) and 20 um of
 # stroke in two steps
 SETS = ["mesh.order=1", "mesh.rings=0", "mesh.h=6e-3", "mc_bending.fill_h=4e-3",
-        "mc_bending.stroke=2e-5", "mc_bending.n_steps=2", "mc_bending.vtk_every=0",
+        "mc_bending.penalty=1", "mc_bending.stroke=2e-5", "mc_bending.n_steps=2", "mc_bending.vtk_every=0",
         "solver.rtol=1e-5", "run.threads=1", "run.plots=0"]
 
 def rows(path):
