@@ -325,7 +325,6 @@ static double overlap_volume(const FemContact *c) {
 /* ------------------------------------------------------------------ the run */
 
 enum { C_WALL, C_BARREL, C_PISTON, NC };
-static const char *contact_name[NC] = {"cavity", "barrel", "piston"};
 
 #define N_COLS 19
 typedef struct {
@@ -773,7 +772,6 @@ static int mc_run(void *scene, SaRun *run) {
   free(o.yield);
   free(o.reg);
   fem_mesh_destroy(&o.m);
-  (void)contact_name;
   if (rc) return sa_error_push(rc, __func__, __FILE__, __LINE__);
   /* an early end of the stroke is a numerical failure (exit 2) with the results kept */
   if (rc_stroke) return SA_ERROR(rc_stroke, "stroke ended at %.4g mm of %.4g mm (results up to "
