@@ -30,6 +30,7 @@ const SaModule *const softact_modules[] = {
     &fem_module,
     &fem_triaxial_module,
     &fem_footing_module,
+    &fem_mc_bending_module,
 #endif
 #ifdef SOFTACT_HAVE_DEM
     &dem_module,

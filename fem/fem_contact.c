@@ -44,12 +44,15 @@ struct FemContact {
   int *anc_f;     /* mesh: anchor triangle (-1: none) */
   int *last_tri; /* mesh: triangle found at the last evaluation (tie-breaking) */
   double *anc_b;  /* mesh: its barycentric coordinates (3 per slave) */
+  double *vn;     /* mesh, smooth_normals: unit vertex normals of the master (3 per mesh node) */
   /* committed read-back */
   double *gap_c, *tn_c, *tt_c, *nrm_c;
   FemContactStats st;
   FemSolver *s;
   int attached;
 };
+
+static void vertex_normals(FemContact *c, const double *x);
 
 FemContactParams fem_contact_params_default(void) {
   FemContactParams p = {0};
@@ -158,6 +161,13 @@ int fem_contact_set_master(FemContact *c, const char *master) {
     c->nt += face_tris(mf->faces + (size_t)f * mf->nfn, mf->nfn, c->tri + 3 * c->nt);
   snprintf(c->master, sizeof c->master, "%s", master);
   c->target = TGT_MESH;
+  free(c->vn);
+  c->vn = NULL;
+  if (c->prm.smooth_normals) {
+    c->vn = calloc(3 * (size_t)c->m->nnodes, sizeof *c->vn);
+    SA_REQUIRE(c->vn, SA_ERR_MEMORY, "contact vertex normals");
+    vertex_normals(c, c->m->xyz);
+  }
   return 0;
 }
 
@@ -405,18 +415,27 @@ static int mesh_search(const FemContact *c, int node, const double *x, const dou
  * nodes xt (9) and the anchor triangle's nodes xa (9). Fs [out] 3 on the slave, Fm [out] 9 on
  * the triangle's nodes. frozen/slip_in as node_law. Returns active. */
 static int mesh_pair(const FemContact *c, int k, const double *xs, const double *xt,
-                     const double *xa, int frozen, int slip_in, double *Fs, double *Fm,
-                     double *g_out, double *n_out, double *tn, double *tt, int *slip) {
+                     const double *xa, const double *vn3, int frozen, int slip_in, double *Fs,
+                     double *Fm, double *g_out, double *n_out, double *tn, double *tt, int *slip) {
   double bc[3], n[3], xc[3], a[3], g;
   closest_on_tri(xs, xt, xt + 3, xt + 6, bc);
-  tri_normal(xt, xt + 3, xt + 6, n);
+  if (vn3) { /* smooth_normals: the vertex normals interpolated at the closest point */
+    for (int i = 0; i < 3; i++) n[i] = bc[0] * vn3[i] + bc[1] * vn3[3 + i] + bc[2] * vn3[6 + i];
+    double l = sqrt(dot3(n, n));
+    for (int i = 0; i < 3; i++) n[i] /= l;
+  } else {
+    tri_normal(xt, xt + 3, xt + 6, n);
+  }
   for (int i = 0; i < 3; i++) {
     xc[i] = bc[0] * xt[i] + bc[1] * xt[3 + i] + bc[2] * xt[6 + i];
     a[i] = c->anc_b[3 * k] * xa[i] + c->anc_b[3 * k + 1] * xa[3 + i] + c->anc_b[3 * k + 2] * xa[6 + i];
   }
   double w[3] = {xs[0] - xc[0], xs[1] - xc[1], xs[2] - xc[2]};
   g = dot3(w, n);
-  int act = node_law(&c->prm, c->sarea[k], g, n, NULL, xs, a, frozen, slip_in, Fs, NULL, tn, tt, slip);
+  /* smooth normals: the slip is the motion of the closest point on the master (the gap vector
+   * xs - xc is along the facet normal, not along n, so x - a would carry a spurious slip) */
+  int act = node_law(&c->prm, c->sarea[k], g, n, NULL, vn3 ? xc : xs, a, frozen, slip_in, Fs,
+                     NULL, tn, tt, slip);
   for (int j = 0; j < 3; j++)
     for (int i = 0; i < 3; i++) Fm[3 * j + i] = -bc[j] * Fs[i];
   if (g_out) *g_out = g;
@@ -448,24 +467,53 @@ static int pair_nodes(const FemContact *c, int k, int t, int *L, int *rt, int *r
   return nl;
 }
 
-static int pair_eval(const FemContact *c, int k, const double *xl, const int *rt,
+static int pair_eval(const FemContact *c, int k, int t, const double *xl, const int *rt,
                      const int *ra, int frozen, int slip_in, double *Fs, double *Fm, double *g,
                      double *n, double *tn, double *tt, int *slip) {
-  double xt[9], xa[9];
+  double xt[9], xa[9], vn3[9];
+  if (c->vn)
+    for (int i = 0; i < 3; i++) memcpy(vn3 + 3 * i, c->vn + 3 * c->tri[3 * t + i], 3 * sizeof(double));
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
       xt[3 * i + j] = xl[3 * rt[i] + j];
       xa[3 * i + j] = xl[3 * ra[i] + j];
     }
-  return mesh_pair(c, k, xl, xt, xa, frozen, slip_in, Fs, Fm, g, n, tn, tt, slip);
+  return mesh_pair(c, k, xl, xt, xa, c->vn ? vn3 : NULL, frozen, slip_in, Fs, Fm, g, n, tn, tt,
+                   slip);
 }
 
 /* ------------------------------------------------------------------ contributor */
 
 
+/* smooth_normals: area-weighted unit vertex normals of the master triangles at positions x
+ * (held fixed in the finite-difference tangent of a pair: the normal's dependence on the
+ * neighbouring master nodes is left out of the tangent). */
+static void vertex_normals(FemContact *c, const double *x) {
+  if (!c->vn) return;
+  for (int t = 0; t < c->nt; t++)
+    for (int j = 0; j < 3; j++) memset(c->vn + 3 * c->tri[3 * t + j], 0, 3 * sizeof(double));
+  for (int t = 0; t < c->nt; t++) {
+    const int *T = c->tri + 3 * t;
+    double u[3], w[3], n[3];
+    for (int i = 0; i < 3; i++) {
+      u[i] = x[3 * T[1] + i] - x[3 * T[0] + i];
+      w[i] = x[3 * T[2] + i] - x[3 * T[0] + i];
+    }
+    cross3(u, w, n);
+    for (int j = 0; j < 3; j++)
+      for (int i = 0; i < 3; i++) c->vn[3 * T[j] + i] += n[i];
+  }
+  for (int t = 0; t < c->nt; t++)
+    for (int j = 0; j < 3; j++) {
+      double *q = c->vn + 3 * c->tri[3 * t + j], l = sqrt(dot3(q, q));
+      if (l > 0 && fabs(l - 1) > 1e-15) for (int i = 0; i < 3; i++) q[i] /= l;
+    }
+}
+
 static int contact_eval(void *ctx, FemAsmView *v) {
   FemContact *c = ctx;
   const double *x = fem_asm_positions(v);
+  if (c->target == TGT_MESH) vertex_normals(c, x);
   int wantK = fem_asm_wants_tangent(v);
   if (c->target == TGT_PLANE) plane_at(c, fem_asm_load_factor(v));
   for (int k = 0; k < c->ns; k++) {
@@ -498,7 +546,7 @@ static int contact_eval(void *ctx, FemAsmView *v) {
     int L[7], rt[3], ra[3], nl = pair_nodes(c, k, t, L, rt, ra);
     double xl[21], Fs[3], Fm[9], tt[3];
     for (int r = 0; r < nl; r++) memcpy(xl + 3 * r, x + 3 * L[r], 3 * sizeof(double));
-    if (!pair_eval(c, k, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt, &slip))
+    if (!pair_eval(c, k, t, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt, &slip))
       continue;
     if (c->prm.max_penetration > 0 && -g > c->prm.max_penetration) {
       sa_log(SA_LOG_DEBUG, "fem", "contact '%s': node %d penetrates %.3g m > %.3g m", c->slave,
@@ -530,9 +578,9 @@ static int contact_eval(void *ctx, FemAsmView *v) {
         int sp;
         double keep = xl[3 * r + j];
         xl[3 * r + j] = keep + h;
-        pair_eval(c, k, xl, rt, ra, 1, slip, Fp, Fp + 3, &gg, nn, &tnn, ttt, &sp);
+        pair_eval(c, k, t, xl, rt, ra, 1, slip, Fp, Fp + 3, &gg, nn, &tnn, ttt, &sp);
         xl[3 * r + j] = keep - h;
-        pair_eval(c, k, xl, rt, ra, 1, slip, Fmn, Fmn + 3, &gg, nn, &tnn, ttt, &sp);
+        pair_eval(c, k, t, xl, rt, ra, 1, slip, Fmn, Fmn + 3, &gg, nn, &tnn, ttt, &sp);
         xl[3 * r + j] = keep;
         for (int q = 0; q < 4; q++)
           for (int i = 0; i < 3; i++)
@@ -549,6 +597,7 @@ static int contact_eval(void *ctx, FemAsmView *v) {
  * map is kept, the slipped part is absorbed by moving the anchor) and the read-back state. */
 static void contact_commit(void *ctx, const double *x) {
   FemContact *c = ctx;
+  if (c->target == TGT_MESH) vertex_normals(c, x);
   if (c->target == TGT_PLANE) {
     double lam = c->s ? fem_solver_load_factor(c->s) : 0.0;
     plane_at(c, lam);
@@ -576,16 +625,19 @@ static void contact_commit(void *ctx, const double *x) {
         int L[7], rt[3], ra[3], nl = pair_nodes(c, k, t, L, rt, ra);
         double xl[21], Fs[3], Fm[9];
         for (int r = 0; r < nl; r++) memcpy(xl + 3 * r, x + 3 * L[r], 3 * sizeof(double));
-        act = pair_eval(c, k, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt,
+        act = pair_eval(c, k, t, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt,
                         &slip);
         memcpy(F, Fs, sizeof F);
         /* new anchor a = x_c - d_new = xs - g n + t_T / eps_T, in the triangle's (unclamped)
          * barycentric coordinates */
         const double *P0 = x + 3 * c->tri[3 * t], *P1 = x + 3 * c->tri[3 * t + 1],
                      *P2 = x + 3 * c->tri[3 * t + 2];
-        double a[3], e1[3], e2[3], w[3];
+        double a[3], e1[3], e2[3], w[3], bq[3];
+        if (c->vn) closest_on_tri(xs, P0, P1, P2, bq);
         for (int i = 0; i < 3; i++) {
-          a[i] = xs[i] - g * n[i] + (act ? tt[i] / c->prm.penalty_tangent : 0);
+          /* smooth normals: the anchor follows the closest point (see mesh_pair) */
+          double base = c->vn ? bq[0] * P0[i] + bq[1] * P1[i] + bq[2] * P2[i] : xs[i] - g * n[i];
+          a[i] = base + (act ? tt[i] / c->prm.penalty_tangent : 0);
           e1[i] = P1[i] - P0[i];
           e2[i] = P2[i] - P0[i];
           w[i] = a[i] - P0[i];
@@ -681,7 +733,7 @@ void fem_contact_destroy(FemContact **cp) {
   if (!cp || !*cp) return;
   FemContact *c = *cp;
   void *p[] = {c->last_tri, c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
-               c->gap_c, c->tn_c, c->tt_c, c->nrm_c};
+               c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->vn};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
   free(c);
   *cp = NULL;

@@ -52,6 +52,11 @@ typedef struct {
   double max_penetration; /* [m]; deeper = recoverable failure (0: no limit) */
   double search_radius;   /* [m] mesh master: candidate pairs of the reference configuration
                            * within this distance enter the pattern at setup (0: none) */
+  int smooth_normals;     /* mesh master: 1 = the normal at the contact point interpolates the
+                           * master's area-weighted vertex normals (continuous across master
+                           * edges; the faceted normal jumps by the facet angle there and a slave
+                           * node crossing an edge makes Newton chatter); its dependence on the
+                           * master's nodes is left out of the tangent. 0 = facet normal */
 } FemContactParams;
 
 FemContactParams fem_contact_params_default(void); /* penalty 0 (must be set), mu 0 */

@@ -27,6 +27,12 @@ static const SaParam fill_params[] = {
      "Poisson's ratio"},
     {"density", SA_PARAM_REAL, P(density), "kg/m^3", "1550", 0, INFINITY, 0, NULL,
      "bulk density (gravity; the verification scenes are weightless)"},
+    {"friction_wall", SA_PARAM_REAL, P(friction_wall), "-", "0.6", 0, 10, 0, NULL,
+     "Coulomb friction fill - silicone cavity wall and floor (actuator scene [mc_bending]; "
+     "the bead-silicone friction)"},
+    {"friction_piston", SA_PARAM_REAL, P(friction_piston), "-", "0.3", 0, 10, 0, NULL,
+     "Coulomb friction fill - rigid barrel and piston (actuator scene [mc_bending]; the "
+     "bead-piston friction)"},
 };
 #undef P
 

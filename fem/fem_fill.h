@@ -2,6 +2,9 @@
  * verification scenes built on it:
  *   [triaxial]  drained triaxial compression of a cube (fem_triaxial.c, cases/mc_triaxial.ini)
  *   [footing]   rigid strip footing on a weightless layer (fem_footing.c, cases/mc_footing.ini)
+ * and the actuator's continuum scene:
+ *   [mc_bending] the fill in the bore pushed by the piston (fem_mc_scene.c,
+ *                cases/granular_bending_mc.ini)
  * The [fill] table is shared (listed once in `softact keys`); the actuator's continuum scene can
  * read the same section. The law is "mohr_coulomb" from the registry (fem_law.h,
  * fem_mohr_coulomb.h); docs/mohr_coulomb.md has the model and the measured results. */
@@ -19,6 +22,8 @@ typedef struct {
   double young;          /* [Pa] */
   double poisson;        /* [-] */
   double density;        /* [kg/m^3] */
+  double friction_wall;   /* [-] Coulomb coefficient fill - silicone cavity (actuator scene) */
+  double friction_piston; /* [-] fill - rigid barrel and piston (actuator scene) */
 } FemFillParams;
 
 extern const SaParamTable fem_fill_table; /* [fill] */
@@ -35,5 +40,6 @@ void fem_fill_history_mean(const FemSolver *s, int k, double *out);
 
 extern const SaModule fem_triaxial_module; /* trigger [triaxial] */
 extern const SaModule fem_footing_module;  /* trigger [footing] */
+extern const SaModule fem_mc_bending_module; /* trigger [mc_bending] (extends [mesh]) */
 
 #endif

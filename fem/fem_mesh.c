@@ -967,6 +967,59 @@ int fem_mesh_add_surface_side(FemMesh *m, const char *surface, const char *regio
   return 0;
 }
 
+int fem_mesh_append(FemMesh *a, const FemMesh *b)
+{
+  SA_REQUIRE(a->etype == b->etype, SA_ERR_INPUT, "mesh %s (tet%d) and %s (tet%d): one element "
+             "type per mesh", a->source, a->nen, b->source, b->nen);
+  for (int r = 0; r < b->nregions; ++r)
+    SA_REQUIRE(fem_mesh_find_region(a, b->region_names[r]) < 0, SA_ERR_INPUT,
+               "region '%s' of %s is already in %s", b->region_names[r], b->source, a->source);
+  for (int k = 0; k < b->nsurfaces; ++k)
+    SA_REQUIRE(!fem_mesh_find_surface(a, b->surfaces[k].name), SA_ERR_INPUT,
+               "surface '%s' of %s is already in %s", b->surfaces[k].name, b->source, a->source);
+  int nn = a->nnodes + b->nnodes, ne = a->nelem + b->nelem, nr = a->nregions + b->nregions;
+  int ns = a->nsurfaces + b->nsurfaces, on = a->nnodes, oe = a->nelem, orr = a->nregions;
+  double *xyz = malloc(sizeof(double) * 3 * (size_t)nn);
+  int *conn = malloc(sizeof(int) * (size_t)a->nen * ne), *reg = malloc(sizeof(int) * (size_t)ne);
+  char(*rn)[64] = malloc(sizeof *rn * (size_t)(nr ? nr : 1));
+  FemSurface *sv = calloc((size_t)(ns ? ns : 1), sizeof *sv);
+  int ok = xyz && conn && reg && rn && sv;
+  for (int k = 0; ok && k < b->nsurfaces; ++k) {
+    const FemSurface *S = b->surfaces + k;
+    FemSurface *T = sv + a->nsurfaces + k;
+    *T = *S;
+    T->faces = malloc(sizeof(int) * (size_t)S->nfn * (S->nfaces ? S->nfaces : 1));
+    T->face_elem = malloc(sizeof(int) * (size_t)(S->nfaces ? S->nfaces : 1));
+    T->nodes = malloc(sizeof(int) * (size_t)(S->nnodes ? S->nnodes : 1));
+    ok = T->faces && T->face_elem && T->nodes;
+    for (int i = 0; ok && i < S->nfn * S->nfaces; ++i) T->faces[i] = S->faces[i] + on;
+    for (int i = 0; ok && i < S->nfaces; ++i) T->face_elem[i] = S->face_elem[i] + oe;
+    for (int i = 0; ok && i < S->nnodes; ++i) T->nodes[i] = S->nodes[i] + on;
+  }
+  if (!ok) {
+    for (int k = 0; sv && k < b->nsurfaces; ++k) {
+      free(sv[a->nsurfaces + k].faces);
+      free(sv[a->nsurfaces + k].face_elem);
+      free(sv[a->nsurfaces + k].nodes);
+    }
+    free(xyz), free(conn), free(reg), free(rn), free(sv);
+    return SA_ERROR(SA_ERR_MEMORY, "appending mesh %s", b->source);
+  }
+  memcpy(xyz, a->xyz, sizeof(double) * 3 * (size_t)on);
+  memcpy(xyz + 3 * (size_t)on, b->xyz, sizeof(double) * 3 * (size_t)b->nnodes);
+  memcpy(conn, a->conn, sizeof(int) * (size_t)a->nen * oe);
+  for (size_t i = 0; i < (size_t)b->nen * b->nelem; ++i) conn[(size_t)a->nen * oe + i] = b->conn[i] + on;
+  for (int e = 0; e < oe; ++e) reg[e] = a->region ? a->region[e] : 0;
+  for (int e = 0; e < b->nelem; ++e) reg[oe + e] = (b->region ? b->region[e] : 0) + orr;
+  if (orr) memcpy(rn, a->region_names, sizeof *rn * (size_t)orr);
+  if (b->nregions) memcpy(rn + orr, b->region_names, sizeof *rn * (size_t)b->nregions);
+  if (a->nsurfaces) memcpy(sv, a->surfaces, sizeof *sv * (size_t)a->nsurfaces);
+  free(a->xyz), free(a->conn), free(a->region), free(a->region_names), free(a->surfaces);
+  a->xyz = xyz, a->conn = conn, a->region = reg, a->region_names = rn, a->surfaces = sv;
+  a->nnodes = nn, a->nelem = ne, a->nregions = nr, a->nsurfaces = ns;
+  return 0;
+}
+
 void fem_mesh_destroy(FemMesh **pm)
 {
   if (!pm || !*pm) return;

@@ -73,6 +73,11 @@ int fem_mesh_require(const FemMesh *m, int nregions, const char *const *regions,
  * face does not bound the region. */
 int fem_mesh_add_surface_side(FemMesh *m, const char *surface, const char *region,
                               const char *name);
+/* Several bodies without shared nodes: append a copy of b [in] to a [in/out]: b's nodes,
+ * elements (same element type), regions and surfaces follow a's, with indices offset. A region
+ * or surface name of b that a already has is an SA_ERR_INPUT (the bodies stay apart); on any
+ * error a is unchanged. */
+int fem_mesh_append(FemMesh *a, const FemMesh *b);
 /* Total reference volume of a region (-1 = all). */
 double fem_mesh_volume(const FemMesh *m, int region);
 /* Shape quality of the corner tets of a region (-1 = all): radius ratio 3 r_in / r_circ

@@ -17,7 +17,7 @@ set(_sa_fem_sources
   ${CMAKE_CURRENT_LIST_DIR}/fem_checkpoint.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_bending.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_contact.c)
-foreach(_f fem_actuator.c fem_coupling.c fem_scene.c fem_fill.c fem_triaxial.c fem_footing.c)
+foreach(_f fem_actuator.c fem_coupling.c fem_scene.c fem_fill.c fem_triaxial.c fem_footing.c fem_mc_scene.c)
   if(EXISTS ${CMAKE_CURRENT_LIST_DIR}/${_f})
     list(APPEND _sa_fem_sources ${CMAKE_CURRENT_LIST_DIR}/${_f})
   endif()
