@@ -182,6 +182,10 @@ int dem_bridge_checkpoint_info(const char *path, DemCheckpointInfo *info);
  * then only dem_bridge_destroy is left). */
 int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, const char *path,
                                      int expected_count);
+/* Append LIGGGHTS' log from now on to path [in] (a bridge created with no log, e.g. one
+ * resumed to repeat a coupling step, writes on in the run's log). A path LIGGGHTS cannot take
+ * (whitespace or # $ * % & ' ") is refused with SA_ERR_INPUT. */
+int dem_bridge_log_append(DemBridge *b, const char *path);
 /* Send one raw input-script command (validated by the caller; tests and studies only). */
 int dem_bridge_command(DemBridge *b, const char *cmd);
 void dem_bridge_destroy(DemBridge **b);

@@ -354,6 +354,16 @@ void dem_bridge_destroy(DemBridge **pb) {
   *pb = NULL;
 }
 
+int dem_bridge_log_append(DemBridge *b, const char *path) {
+  SA_REQUIRE(b && b->lmp && path, SA_ERR_INTERNAL, "dem_bridge_log_append: no bridge");
+  SA_REQUIRE(path_is_plain(path) && strlen(path) < 900, SA_ERR_INPUT,
+             "LIGGGHTS cannot take the log path '%s' (whitespace or a special character)", path);
+  FILE *f = fopen(path, "a"); /* LIGGGHTS aborts when it cannot open its log: try first */
+  SA_REQUIRE(f, SA_ERR_IO, "cannot open the LIGGGHTS log file '%s'", path);
+  fclose(f);
+  return send(b, "log %s append", path);
+}
+
 int dem_bridge_command(DemBridge *b, const char *cmd) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(cmd, SA_ERR_INTERNAL, "no command");

@@ -24,6 +24,7 @@
 
 #include "dem.h"
 #include "dem_checks.h"
+#include "dem_iqn.h"
 #include "dem_scene.h"
 #include "fem_contrib.h"
 #include "fem_coupling.h"
@@ -54,6 +55,12 @@ typedef struct {
   double *f_tri, *f_sum, *f_node, *f_app; /* wall forces: per triangle, summed, nodal, applied */
   double *k_if, *n_if, *a_if; /* Robin interface: stiffness, normal, anchor per wall vertex */
   double V0;
+  /* iterated coupling step ([coupling] iterations > 1): quasi-Newton, the step's start */
+  DemIqn *iqn;
+  FemSnapshot *snap;
+  double *x_start, *x_try, *x_next, *f_app0;
+  double t_rollback, it_res, it_res_max;
+  int it_last, it_sum, it_max, it_steps, it_unconverged;
   /* DEM */
   DemBridge *b;
   int mesh_id[N_MESH], mesh_nt[N_MESH], mesh_nv[N_MESH];
@@ -181,6 +188,13 @@ static int setup_fem(Run *g) {
   g->a_if = calloc(v3, sizeof(double));
   SA_REQUIRE(g->xw_prev && g->xw_cur && g->xw && g->vw && g->f_tri && g->f_sum && g->f_node &&
              g->f_app && g->k_if && g->n_if && g->a_if, SA_ERR_MEMORY, "coupling buffers");
+  if (g->sc->coupling.iterations > 1) {
+    g->x_start = malloc(sizeof(double) * v3), g->x_try = malloc(sizeof(double) * v3);
+    g->x_next = malloc(sizeof(double) * v3), g->f_app0 = malloc(sizeof(double) * v3);
+    SA_REQUIRE(g->x_start && g->x_try && g->x_next && g->f_app0, SA_ERR_MEMORY, "iteration buffers");
+    /* 3 columns per iteration at most matter; 40 hold several steps' worth */
+    SA_CHECK(dem_iqn_create(3 * g->nv, 40, g->sc->coupling.qn_reuse, &g->iqn));
+  }
   if (g->sc->coupling.interface_stiffness > 0) {
     FemContributor c = {.name = "dem interface", .eval = interface_eval, .ctx = g};
     SA_CHECK(fem_solver_add_contributor(g->s, &c));
@@ -239,7 +253,8 @@ static void piston_vertices(int nth, double r, double z, double *xyz) {
 
 /* resume [in]: checkpoint path to continue from (NULL: a new bed is poured); xw_wall,
  * z_piston: the wall nodes and piston height LIGGGHTS held at the checkpoint. */
-static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z_piston) {
+static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z_piston,
+                     int repeat) {
   const DemScene *sc = g->sc;
   const DemGrainCase *gr = &sc->grains;
   g->d = gr->diameter;
@@ -268,10 +283,12 @@ static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z
   memcpy(p.box_hi, hi, sizeof hi);
   char log[SA_STR_MAX];
   SA_CHECK(sa_run_path(g->run, "liggghts.log", log));
-  SA_CHECK(dem_bridge_create(log, &g->b));
+  /* a repeated coupling step writes on in the run's log (a new log would truncate it) */
+  SA_CHECK(dem_bridge_create(repeat ? NULL : log, &g->b));
+  if (repeat && dem_bridge_log_append(g->b, log)) sa_error_clear();
   if (resume) {
     SA_CHECK(dem_bridge_setup_from_checkpoint(g->b, &p, resume, g->n_grains));
-    sa_log(SA_LOG_INFO, "dem", "resumed %d grains from %s", g->n_grains, resume);
+    if (!repeat) sa_log(SA_LOG_INFO, "dem", "resumed %d grains from %s", g->n_grains, resume);
   } else {
     SA_CHECK(dem_bridge_setup(g->b, &p));
     sa_log(SA_LOG_INFO, "dem", "pouring %d grains of d = %.3g mm at E = %.3g MPa (physical / %g), "
@@ -626,6 +643,115 @@ static int fem_step(Run *g, double T) {
   return 0;
 }
 
+/* ------------------------------------------------------------------ iterated coupling step */
+
+/* The DEM as it was at the step's start: a new bridge from the step's checkpoint, the meshes
+ * where they were (docs/dem.md "Iterated coupling": about a second per repeat). */
+static int dem_reload(Run *g, const char *path, double z_start) {
+  double t0 = sa_time_now();
+  dem_bridge_destroy(&g->b);
+  for (int k = 0; k < N_MESH; k++) {
+    free(g->mesh_x[k]), free(g->mesh_f[k]);
+    g->mesh_x[k] = g->mesh_f[k] = NULL;
+  }
+  free(g->piston_v);
+  g->piston_v = NULL;
+  int rc = setup_dem(g, path, g->x_start, z_start, 1);
+  g->t_rollback += sa_time_now() - t0;
+  return rc;
+}
+
+static double norm2(const double *a, const double *b, int n) {
+  double s = 0;
+  for (int i = 0; i < n; i++) s += (a[i] - (b ? b[i] : 0)) * (a[i] - (b ? b[i] : 0));
+  return sqrt(s);
+}
+
+/* One coupling step iterated to the interface equilibrium: the DEM moves the wall from where
+ * it is (x_start) to a trial end position x, the FEM answers with x~ = H(x) under the step's
+ * wall forces, and IQN-ILS (dem_iqn.h) proposes the next x, until its update |x_next - x| <=
+ * iteration_tol |x~ - x_start|. Each repeat starts again from the step's start: the FEM from a snapshot, the
+ * DEM from a checkpoint written at the start. The first trial extrapolates the last step's
+ * wall motion. With the Robin springs the FEM knows the bed's local stiffness (a
+ * preconditioner); at the converged x their force vanishes (anchor = x), so the answer does
+ * not depend on interface_stiffness. */
+static int coupling_step_iterated(Run *g, double z0, double v, double T, double T_last) {
+  const DemCouplingCase *cc = &g->sc->coupling;
+  int n3 = 3 * g->nv;
+  size_t bytes = sizeof(double) * (size_t)n3;
+  char dir[SA_STR_MAX], ck[SA_STR_MAX];
+  SA_CHECK(sa_run_path(g->run, "checkpoint", dir));
+  SA_CHECK(sa_mkdir_p(dir));
+  SA_CHECK(sa_path_join(dir, "step.ckpt", ck));
+  double t0 = sa_time_now(), z_start = g->z_piston;
+  SA_CHECK(dem_bridge_write_checkpoint(g->b, ck));
+  SA_CHECK(fem_solver_snapshot(g->s, &g->snap));
+  g->t_rollback += sa_time_now() - t0;
+  memcpy(g->x_start, g->xw, bytes);
+  memcpy(g->f_app0, g->f_app, bytes);
+  /* first trial: the last step's wall motion, scaled to this step's length */
+  double a = T_last > 0 ? T / T_last : 0;
+  for (int k = 0; k < n3; k++) g->x_try[k] = g->xw_cur[k] + a * (g->xw_cur[k] - g->xw_prev[k]);
+  dem_iqn_new_step(g->iqn);
+  int it = 0;
+  double res = INFINITY;
+  for (;; it++) {
+    if (it > 0) {
+      SA_CHECK(dem_reload(g, ck, z_start));
+      SA_CHECK(fem_solver_rollback(g->s, g->snap));
+      memcpy(g->f_app, g->f_app0, bytes);
+    }
+    memcpy(g->xw_prev, g->x_start, bytes);
+    memcpy(g->xw_cur, g->x_try, bytes);
+    SA_CHECK(dem_step(g, z0, v, T));
+    SA_CHECK(fem_step(g, T)); /* xw_cur <- x~ */
+    /* Stop on the size of the quasi-Newton update, not of the residual: with the Robin
+     * springs the residual of a soft mode (the actuator bending with its bed) is the error
+     * times K_wall / (K_wall + K_if), tiny while the error is not (docs/dem.md: stopping on
+     * it left the angle depending on interface_stiffness); the secant model scales it back.
+     * The step's own wall motion is the scale: an update below tol of it means the wall is
+     * within tol of one step from the interface equilibrium (1 nm per node floors it). */
+    double step_motion = fmax(norm2(g->xw_cur, g->x_start, n3), 1e-9 * sqrt((double)g->nv));
+    double r_rel = norm2(g->xw_cur, g->x_try, n3) / step_motion;
+    SA_CHECK(dem_iqn_update(g->iqn, g->x_try, g->xw_cur, g->x_next));
+    res = norm2(g->x_next, g->x_try, n3) / step_motion;
+    double ang = NAN;
+    if (sa_log_get_level() >= SA_LOG_DEBUG &&
+        fem_bending_angle(g->m, g->sc->coupling.tip_surface, fem_solver_positions(g->s), &ang))
+      sa_error_clear();
+    sa_log(SA_LOG_DEBUG, "dem", "coupling iteration %d: update / step motion %.3g, residual / "
+           "step motion %.3g (step motion %.3g nm rms), %d quasi-Newton columns, %d Newton, "
+           "angle %.4f deg", it + 1, res, r_rel, 1e9 * step_motion / sqrt((double)g->nv),
+           dem_iqn_columns(g->iqn), g->newton, ang);
+    if (res <= cc->iteration_tol || it + 1 >= cc->iterations) break;
+    memcpy(g->x_try, g->x_next, bytes);
+  }
+  /* accepted: LIGGGHTS holds the wall at x (the trial), the FEM its answer x~ within the
+   * tolerance; the next step moves the wall on from x */
+  memcpy(g->xw_prev, g->x_start, bytes);
+  memcpy(g->xw_cur, g->x_try, bytes);
+  g->it_last = it + 1, g->it_sum += it + 1, g->it_steps++;
+  if (it + 1 > g->it_max) g->it_max = it + 1;
+  g->it_res = res;
+  if (res > g->it_res_max) g->it_res_max = res;
+  if (res > cc->iteration_tol) {
+    g->it_unconverged++;
+    sa_log(SA_LOG_WARN, "dem", "coupling step not converged in %d iterations: quasi-Newton "
+           "update / step motion = %.3g > iteration_tol = %g (accepted; raise [coupling] iterations)",
+           it + 1, res, cc->iteration_tol);
+  }
+  return 0;
+}
+
+/* One coupling step: staggered (one DEM pass, one FEM solve; the wall the FEM returns is
+ * used in the next step) or iterated. */
+static int coupling_step(Run *g, double z0, double v, double T, double T_last) {
+  if (g->sc->coupling.iterations > 1 && !g->rigid)
+    return coupling_step_iterated(g, z0, v, T, T_last);
+  SA_CHECK(dem_step(g, z0, v, T));
+  return fem_step(g, T);
+}
+
 /* Checks after a coupling step; fills the report fields. */
 static int step_checks(Run *g, int step, double s_disp, int full) {
   const DemScene *sc = g->sc;
@@ -862,6 +988,12 @@ static int write_summary(Run *g, double s_reached, const char *status, double wa
   fprintf(fp, "\n[fem]\nnodes = %d\nelements = %d\nwall_vertices = %d\nwall_triangles = %d\n"
           "factorisations = %d\nreused_factors = %d\nassemblies = %d\n", st.nnodes, st.nelem,
           g->nv, g->nt, st.n_factor, st.n_reuse, st.n_assemble);
+  if (g->iqn) /* counted since this process started (a resumed run counts its own part) */
+    fprintf(fp, "\n[coupling]\niterated_steps = %d\niterations_mean = %.3f\niterations_max = %d\n"
+            "residual_last = %.4g\nresidual_max = %.4g\nunconverged_steps = %d\n"
+            "rollback = %.3f ; s (DEM checkpoints, reloads and FEM snapshots)\n", g->it_steps,
+            g->it_steps ? (double)g->it_sum / g->it_steps : 0.0, g->it_max, g->it_res,
+            g->it_res_max, g->it_unconverged, g->t_rollback);
   return sa_file_commit(&f);
 }
 
@@ -920,6 +1052,9 @@ static int write_checkpoint(Run *g) {
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
   SA_CHECK(sa_file_commit(&f));
+  /* the quasi-Newton columns are not in the checkpoint: both the run that goes on and a run
+   * resumed from it start the next step without them, and stay identical */
+  if (g->iqn) dem_iqn_clear(g->iqn);
   sa_log(SA_LOG_INFO, "dem", "checkpoint after coupling step %d (%.1f s simulated) in %s",
          g->next_step, g->time, dir);
   g->t_out += sa_time_now() - t0;
@@ -1015,8 +1150,7 @@ static int stroke(Run *g, double *s_reached) {
       break;
     }
     if (j < N_PRELOAD) {
-      rc = dem_step(g, g->z_contact, 0, T);
-      if (!rc) rc = fem_step(g, T);
+      rc = coupling_step(g, g->z_contact, 0, T, j > 0 ? T : 0);
       if (!rc) rc = step_checks(g, 0, 0, j == N_PRELOAD - 1);
       if (rc) break;
       g->time += T;
@@ -1028,8 +1162,7 @@ static int stroke(Run *g, double *s_reached) {
       int k = j - N_PRELOAD + 1;
       double s0 = (k - 1) * cc->interval, s1 = fmin(k * cc->interval, sc->piston.stroke);
       double Tk = (s1 - s0) / v;
-      rc = dem_step(g, g->z_contact - s0, v, Tk);
-      if (!rc) rc = fem_step(g, Tk);
+      rc = coupling_step(g, g->z_contact - s0, v, Tk, k > 1 ? cc->interval / v : T);
       if (!rc) rc = step_checks(g, k, s1, k % sc->dem.check_every == 0 || k == nint);
       if (rc) break;
       g->time += Tk;
@@ -1074,10 +1207,12 @@ static void run_free(Run *g) {
   free(g->mats);
   double *bufs[] = {g->xw_prev, g->xw_cur, g->xw, g->vw, g->f_tri, g->f_sum, g->f_node,
                     g->f_app, g->px, g->pv, g->pf, g->pr, g->sigma, g->vm, g->reg,
-                    g->k_if, g->n_if, g->a_if};
+                    g->k_if, g->n_if, g->a_if, g->x_start, g->x_try, g->x_next, g->f_app0};
   for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++) free(bufs[i]);
   for (int k = 0; k < N_MESH; k++) free(g->mesh_x[k]), free(g->mesh_f[k]);
   free(g->piston_v);
+  dem_iqn_destroy(&g->iqn);
+  fem_snapshot_destroy(&g->snap);
   free(g->cell_types);
   free(g->cell_off);
   free(g->rows);
@@ -1096,12 +1231,12 @@ int dem_granular_run(const DemScene *sc, const SaRun *run) {
     char dem[SA_STR_MAX];
     double *xw_wall = NULL;
     if (!rc) rc = read_checkpoint(&g, dem, &xw_wall);
-    if (!rc) rc = setup_dem(&g, dem, xw_wall, g.z_piston);
+    if (!rc) rc = setup_dem(&g, dem, xw_wall, g.z_piston, 0);
     free(xw_wall);
     if (!rc) rc = open_outputs(&g);
     if (!rc) rc = replay_outputs(&g);
   } else {
-    if (!rc) rc = setup_dem(&g, NULL, NULL, 0);
+    if (!rc) rc = setup_dem(&g, NULL, NULL, 0, 0);
     if (!rc) rc = open_outputs(&g);
     if (!rc) rc = pour(&g);
   }
@@ -1127,6 +1262,7 @@ int dem_granular_run(const DemScene *sc, const SaRun *run) {
   sa_timing_add("dem", g.t_dem);
   sa_timing_add("exchange", g.t_exchange);
   sa_timing_add("fem (coupling)", g.t_fem);
+  if (g.iqn) sa_timing_add("rollback", g.t_rollback);
   sa_timing_add("run checks", g.t_checks);
   sa_timing_add("output (vtk)", g.t_out);
   if (started)
@@ -1134,6 +1270,14 @@ int dem_granular_run(const DemScene *sc, const SaRun *run) {
            "(%.2f x DEM), checks %.1f s, VTK %.1f s", g.t_dem, g.t_exchange,
            100 * g.t_exchange / fmax(g.t_dem, 1e-12), g.t_fem, g.t_fem / fmax(g.t_dem, 1e-12),
            g.t_checks, g.t_out);
+  if (g.iqn && started) {
+    sa_log(SA_LOG_INFO, "dem", "coupling iterations: %.2f per step (most %d), rollback %.1f s, "
+           "%d steps not converged", g.it_steps ? (double)g.it_sum / g.it_steps : 0.0, g.it_max,
+           g.t_rollback, g.it_unconverged);
+    char ck[SA_STR_MAX];
+    if (!sa_run_path(run, "checkpoint/step.ckpt", ck)) remove(ck);
+    else sa_error_clear();
+  }
   run_free(&g);
   return rc ? sa_error_push(rc, __func__, __FILE__, __LINE__) : 0;
 }

@@ -76,6 +76,17 @@ static const SaParam coupling_params[] = {
     {"interface_tangential", SA_PARAM_REAL, P(interface_tangential), "-", "0", 0, 1, 0, NULL,
      "tangential stiffness of the Robin interface as a fraction of its normal one (the bed's "
      "grip on the wall; 0 = normal springs only; docs/dem.md)"},
+    {"iterations", SA_PARAM_INT, P(iterations), "-", "1", 1, 50, 0, NULL,
+     "most coupling iterations per step: 1 = one DEM pass and one FEM solve per step (the "
+     "wall follows the bed with a lag, docs/dem.md); > 1 = the step is rolled back (DEM from "
+     "an in-memory checkpoint, FEM from a snapshot) and repeated with quasi-Newton (IQN-ILS) "
+     "wall positions until the wall the FEM returns is the wall the DEM saw"},
+    {"iteration_tol", SA_PARAM_REAL, P(iteration_tol), "-", "0.1", 0, 1, SA_MIN_OPEN, NULL,
+     "an iterated step is converged when the quasi-Newton update of the wall (2-norm over its "
+     "nodes) is below this fraction of the wall's motion over the step: the wall is within this "
+     "fraction of one step of the interface equilibrium"},
+    {"qn_reuse", SA_PARAM_INT, P(qn_reuse), "-", "8", 0, 1000, 0, NULL,
+     "coupling steps whose quasi-Newton columns are reused (the bed's response changes slowly)"},
     {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,
      "mass-proportional (Rayleigh) damping of the silicone in the dynamic scheme"},
     {"sample_every", SA_PARAM_INT, P(sample_every), "-", "1", 1, 100000, 0, NULL,

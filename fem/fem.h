@@ -279,6 +279,14 @@ const FemMesh *fem_solver_mesh(const FemSolver *s);
  * name [in] on a mismatch or a truncated stream). */
 int fem_solver_write_state(FemSolver *s, FILE *f);
 int fem_solver_read_state(FemSolver *s, FILE *f, const char *name);
+/* The same state in memory, for a step that is solved again from where it began (the
+ * iterated FEM-DEM coupling step): fem_solver_snapshot stores it in *snap (allocated on the
+ * first call, [owned], reused after), fem_solver_rollback puts it back. Unlike the checkpoint
+ * the factors are kept (a rolled-back solve reuses them as its iteration matrix). */
+typedef struct FemSnapshot FemSnapshot;
+int fem_solver_snapshot(FemSolver *s, FemSnapshot **snap);
+int fem_solver_rollback(FemSolver *s, const FemSnapshot *snap);
+void fem_snapshot_destroy(FemSnapshot **snap);
 void fem_solver_destroy(FemSolver **s);
 
 /* Bending angle [deg] of a deformed surface: rotation in the x-z plane of the area-weighted

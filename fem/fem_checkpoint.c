@@ -9,6 +9,7 @@
  * resumes from the file take the same next Newton path (fresh factors) and stay identical. */
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fem_solver_priv.h"
@@ -91,4 +92,63 @@ int fem_solver_read_state(FemSolver *s, FILE *f, const char *name) {
   fem_set_x(s);
   s->nw.fact_converged = 0;
   return 0;
+}
+
+/* In-memory snapshot: the same state as the checkpoint, for a coupling step that is iterated
+ * (rolled back and solved again). The factors are kept: a rolled-back solve reuses them as
+ * its modified-Newton iteration matrix, which changes the path, not the converged answer. */
+struct FemSnapshot {
+  size_t ndof, nhist;
+  double *data;
+  int step_count;
+};
+
+int fem_solver_snapshot(FemSolver *s, FemSnapshot **snap) {
+  SA_REQUIRE(s && s->setup_done && snap, SA_ERR_INPUT, "fem_solver_snapshot: no solver set up");
+  size_t ndof = (size_t)s->ndof, nhist = (size_t)s->as.hoff[s->m->nelem];
+  if (!*snap) {
+    FemSnapshot *p;
+    SA_CALLOC(p, 1);
+    p->ndof = ndof, p->nhist = nhist;
+    p->data = malloc(sizeof(double) * (N_VEC * ndof + N_SCAL + nhist));
+    if (!p->data) {
+      free(p);
+      return SA_ERROR(SA_ERR_MEMORY, "FEM snapshot (%zu dofs)", ndof);
+    }
+    *snap = p;
+  }
+  FemSnapshot *p = *snap;
+  SA_REQUIRE(p->ndof == ndof && p->nhist == nhist, SA_ERR_INTERNAL, "snapshot of another model");
+  double *v[N_VEC], *d[N_SCAL], *w = p->data;
+  state_vectors(s, v);
+  state_scalars(s, d);
+  for (int k = 0; k < N_VEC; k++, w += ndof) memcpy(w, v[k], sizeof(double) * ndof);
+  for (int k = 0; k < N_SCAL; k++) *w++ = *d[k];
+  memcpy(w, s->as.hist_c, sizeof(double) * nhist);
+  p->step_count = s->ct.step_count;
+  return 0;
+}
+
+int fem_solver_rollback(FemSolver *s, const FemSnapshot *p) {
+  SA_REQUIRE(s && s->setup_done && p && p->ndof == (size_t)s->ndof &&
+             p->nhist == (size_t)s->as.hoff[s->m->nelem], SA_ERR_INTERNAL,
+             "fem_solver_rollback: no snapshot of this solver");
+  double *v[N_VEC], *d[N_SCAL];
+  const double *w = p->data;
+  state_vectors(s, v);
+  state_scalars(s, d);
+  for (int k = 0; k < N_VEC; k++, w += p->ndof) memcpy(v[k], w, sizeof(double) * p->ndof);
+  for (int k = 0; k < N_SCAL; k++) *d[k] = *w++;
+  memcpy(s->as.hist_c, w, sizeof(double) * p->nhist);
+  memcpy(s->as.hist_t, s->as.hist_c, sizeof(double) * p->nhist);
+  s->ct.step_count = p->step_count;
+  fem_set_x(s);
+  return 0;
+}
+
+void fem_snapshot_destroy(FemSnapshot **p) {
+  if (!p || !*p) return;
+  free((*p)->data);
+  free(*p);
+  *p = NULL;
 }

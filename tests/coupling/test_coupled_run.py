@@ -71,6 +71,38 @@ with tempfile.TemporaryDirectory() as tmp:
         if a != b:
             fails.append("resumed run differs from the run that went on:\n" +
                          "\n".join(f"  {x}\n  {y}" for x, y in zip(a, b) if x != y))
+    # the iterated coupling step (rollback of DEM and FEM, IQN-ILS) from the same checkpoint:
+    # it must finish its 2 steps with every run check holding and the bed's force balance
+    # (independent of the coupling: momentum), each step iterated and rolled back at least once
+    out3 = os.path.join(tmp, "iterated")
+    shutil.copytree(out, out3)
+    os.remove(os.path.join(out3, "bending.csv"))
+    args3 = [a if a != out else out3 for a in args] + [
+        "--set", "coupling.resume=true", "--set", "coupling.iterations=4",
+        "--set", "coupling.interface_stiffness=0.1"]
+    r = subprocess.run(args3, capture_output=True, text=True, timeout=1500)
+    if r.returncode != 0:
+        fails.append(f"iterated run failed: {r.returncode} {r.stderr[-1500:]}")
+    else:
+        it = {}
+        for line in open(os.path.join(out3, "summary.ini")):
+            line = line.split(";")[0].strip()
+            if "=" in line:
+                k, v = [x.strip() for x in line.split("=", 1)]
+                it[k] = v
+        if it.get("status") != "completed" or int(it.get("iterated_steps", 0)) != 2 \
+                or float(it.get("iterations_mean", 0)) < 2:
+            fails.append(f"iterated run: status {it.get('status')}, {it.get('iterated_steps')} "
+                         f"steps iterated, {it.get('iterations_mean')} iterations per step")
+        rows3 = list(csv.DictReader(open(os.path.join(out3, "bending.csv")).readlines()[1:]))
+        for row in rows3:
+            Fp, Fw, Fb = (float(row[k]) for k in ("piston_force", "wall_force_z", "barrel_force_z"))
+            err = abs(Fp + Fw + Fb + W) / (abs(Fp) + W)
+            if err > 0.10:
+                fails.append(f"iterated: force balance misses by {err:.3f} at s = "
+                             f"{row['piston_displacement']}")
+        if os.path.exists(os.path.join(out3, "checkpoint", "step.ckpt")):
+            fails.append("iterated: the step checkpoint was left behind")
     for f in fails:
         print(f)
     sys.exit(1 if fails else 0)

@@ -10,7 +10,13 @@
  * floating-point path; any field left out of the checkpoint (velocity, acceleration, r_n,
  * committed loads, time) changes B at the first step after the resume (checked: the test
  * fails when the velocities are zeroed after reading). Also: a truncated stream and a
- * checkpoint of another mesh are refused with SA_ERR_INPUT. */
+ * checkpoint of another mesh are refused with SA_ERR_INPUT.
+ * Snapshot/rollback (the iterated FEM-DEM step): after step 10, snapshot; step 11 under load
+ * k = 11 -> u1; roll back (displacements and velocities must equal the snapshot's bit for
+ * bit); step 11 under another load; roll back; step 11 under load 11 again -> u1'. The factors
+ * are kept across a rollback (modified Newton from other factors), so u1' equals u1 to the
+ * Newton tolerance (rtol 1e-9: checked to 1e-7 of max|u|), not bitwise; the other load must
+ * have moved the bar (else the rollback would be untested). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -89,6 +95,42 @@ int main(void) {
   if (umax < 1e-4) {
     printf("the load moved the bar by only %.3g: the test exercises nothing\n", umax);
     fails++;
+  }
+  /* snapshot and rollback */
+  {
+    FemSnapshot *snap = NULL;
+    double *u0 = malloc(sizeof(double) * n), *v0 = malloc(sizeof(double) * n);
+    double *u1 = malloc(sizeof(double) * n);
+    TU_CHECK(!(u0 && v0 && u1));
+    memcpy(u0, ua, sizeof(double) * n), memcpy(v0, va, sizeof(double) * n);
+    double t0 = fem_solver_time(a);
+    TU_CHECK(fem_solver_snapshot(a, &snap));
+    TU_CHECK(step(a, tipn, ntip, 11));
+    memcpy(u1, fem_solver_displacements(a), sizeof(double) * n);
+    TU_CHECK(fem_solver_rollback(a, snap));
+    double d0 = 0;
+    for (int i = 0; i < n; i++)
+      d0 = fmax(d0, fmax(fabs(fem_solver_displacements(a)[i] - u0[i]),
+                         fabs(fem_solver_velocities(a)[i] - v0[i])));
+    if (d0 != 0 || fem_solver_time(a) != t0) {
+      printf("rollback does not restore the snapshot: max diff %.3g, time %.17g vs %.17g\n", d0,
+             fem_solver_time(a), t0);
+      fails++;
+    }
+    TU_CHECK(step(a, tipn, ntip, 14)); /* another load */
+    double dother = 0;
+    for (int i = 0; i < n; i++) dother = fmax(dother, fabs(fem_solver_displacements(a)[i] - u1[i]));
+    TU_CHECK(fem_solver_rollback(a, snap));
+    TU_CHECK(step(a, tipn, ntip, 11));
+    double d1 = 0;
+    for (int i = 0; i < n; i++) d1 = fmax(d1, fabs(fem_solver_displacements(a)[i] - u1[i]));
+    if (d1 > 1e-7 * umax || dother < 1e-3 * umax) {
+      printf("repeated step after rollback: |u1' - u1| %.3g (limit %.3g), other load moved %.3g\n",
+             d1, 1e-7 * umax, dother);
+      fails++;
+    }
+    fem_snapshot_destroy(&snap);
+    free(u0), free(v0), free(u1);
   }
   /* a truncated checkpoint and one of another mesh are refused */
   f = fmemopen(buf, len / 2, "rb");
