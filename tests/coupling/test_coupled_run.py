@@ -16,6 +16,19 @@ path, so any state left out of the checkpoint shows). References independent of 
    of a poured monodisperse bed between 0.45 and 0.64 (random loose to random close packing)."""
 import csv, math, os, shutil, subprocess, sys, tempfile
 
+
+
+def read_summary(folder):
+    """summary.ini's keys (sections flattened), values without their comments."""
+    keys = {}
+    for line in open(os.path.join(folder, "summary.ini")):
+        line = line.split(";")[0].strip()
+        if "=" in line:
+            k, v = [x.strip() for x in line.split("=", 1)]
+            keys[k] = v
+    return keys
+
+
 exe, case = sys.argv[1], sys.argv[2]
 with tempfile.TemporaryDirectory() as tmp:
     out = os.path.join(tmp, "run")
@@ -31,12 +44,7 @@ with tempfile.TemporaryDirectory() as tmp:
         print("coupled run failed:", r.returncode, r.stderr[-2000:])
         sys.exit(1)
     rows = list(csv.DictReader(open(os.path.join(out, "bending.csv")).readlines()[1:]))
-    summ = {}
-    for line in open(os.path.join(out, "summary.ini")):
-        line = line.split(";")[0].strip()
-        if "=" in line:
-            k, v = [s.strip() for s in line.split("=", 1)]
-            summ[k] = v
+    summ = read_summary(out)
     fails = []
     if summ.get("status") != "completed":
         fails.append(f"status {summ.get('status')}")
@@ -84,12 +92,7 @@ with tempfile.TemporaryDirectory() as tmp:
     if r.returncode != 0:
         fails.append(f"iterated run failed: {r.returncode} {r.stderr[-1500:]}")
     else:
-        it = {}
-        for line in open(os.path.join(out3, "summary.ini")):
-            line = line.split(";")[0].strip()
-            if "=" in line:
-                k, v = [x.strip() for x in line.split("=", 1)]
-                it[k] = v
+        it = read_summary(out3)
         if it.get("status") != "completed" or int(it.get("iterated_steps", 0)) != 2 \
                 or float(it.get("iterations_mean", 0)) < 2:
             fails.append(f"iterated run: status {it.get('status')}, {it.get('iterated_steps')} "
