@@ -919,9 +919,10 @@ static int output_row(Run *g, double s_disp, double time) {
   return sa_csv_row(g->csv, row);
 }
 
+/* gnuplot runs in the results folder (sa_plot.c), beside the CSV: named without a folder */
 static void make_plots(const SaRun *run) {
-  char csv[SA_STR_MAX], png[SA_STR_MAX];
-  if (sa_run_path(run, "bending.csv", csv) || sa_run_path(run, "bending_angle.png", png)) {
+  char png[SA_STR_MAX];
+  if (sa_run_path(run, "bending_angle.png", png)) {
     sa_error_clear();
     return;
   }
@@ -932,7 +933,7 @@ static void make_plots(const SaRun *run) {
            "set title 'Granular actuator: bending angle (FEM-DEM)'\n"
            "set xlabel 'piston displacement [mm]'\nset ylabel 'bending angle [deg]'\n"
            "plot '%s' skip 2 using ($1*1e3):2 with lines lw 2 title 'FEM-DEM (LIGGGHTS)'\n",
-           csv);
+           "bending.csv");
   if (sa_plot_script(png, body)) sa_error_clear();
   if (sa_run_path(run, "piston_force.png", png)) {
     sa_error_clear();
@@ -944,7 +945,7 @@ static void make_plots(const SaRun *run) {
            "set xlabel 'piston displacement [mm]'\nset ylabel 'piston force [N]'\n"
            "plot '%s' skip 2 using ($1*1e3):3 with lines lw 2 title 'piston force', "
            "'' skip 2 using ($1*1e3):8 with lines title 'wall z-force', "
-           "'' skip 2 using ($1*1e3):9 with lines title 'barrel z-force'\n", csv);
+           "'' skip 2 using ($1*1e3):9 with lines title 'barrel z-force'\n", "bending.csv");
   if (sa_plot_script(png, body)) sa_error_clear();
   if (sa_run_path(run, "volume.png", png)) {
     sa_error_clear();
@@ -956,7 +957,7 @@ static void make_plots(const SaRun *run) {
            "set ylabel 'volume [mm^3]'\n"
            "plot '%s' skip 2 using ($1*1e3):($4*1e9) with lines lw 2 title 'displaced volume', "
            "'' skip 2 using ($1*1e3):($6*1e9) with lines lw 2 title 'cavity volume change'\n",
-           csv);
+           "bending.csv");
   if (sa_plot_script(png, body)) sa_error_clear();
 }
 

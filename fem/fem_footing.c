@@ -242,16 +242,16 @@ static int output_step(Ft *t, int last) {
   return 0;
 }
 
+/* gnuplot runs in the results folder (sa_plot.c), beside the CSV: named without a folder */
 static int make_plot(const SaRun *run, double nc) {
-  char csv[SA_STR_MAX], png[SA_STR_MAX], body[4 * SA_STR_MAX];
-  SA_CHECK(sa_run_path(run, "footing.csv", csv));
+  char png[SA_STR_MAX], body[4 * SA_STR_MAX];
   SA_CHECK(sa_run_path(run, "pressure_settlement.png", png));
   snprintf(body, sizeof body,
            "set datafile separator ','\nset key bottom right\nset grid\n"
            "set title 'Strip footing on a weightless Mohr-Coulomb layer'\n"
            "set xlabel 'settlement / B [-]'\nset ylabel 'p / c [-]'\n"
            "plot '%s' using 3:5 skip 1 with linespoints pt 7 ps 0.6 title 'FEM', "
-           "%.9g with lines dt 2 lw 2 title 'Prandtl N_c'\n", csv, nc);
+           "%.9g with lines dt 2 lw 2 title 'Prandtl N_c'\n", "footing.csv", nc);
   if (sa_plot_script(png, body)) sa_error_clear(); /* optional; the data is in the CSV */
   return 0;
 }

@@ -448,9 +448,10 @@ static int output_row(Mc *o) {
   return 0;
 }
 
+/* gnuplot runs in the results folder (sa_plot.c), beside the CSV: named without a folder */
 static void make_plots(const SaRun *run) {
-  char csv[SA_STR_MAX], png[SA_STR_MAX], body[2048];
-  if (sa_run_path(run, "bending.csv", csv) || sa_run_path(run, "bending_angle.png", png)) {
+  char png[SA_STR_MAX], body[2048];
+  if (sa_run_path(run, "bending_angle.png", png)) {
     sa_error_clear();
     return;
   }
@@ -459,7 +460,7 @@ static void make_plots(const SaRun *run) {
            "set title 'Granular actuator: bending angle (Mohr-Coulomb fill)'\n"
            "set xlabel 'piston displacement [mm]'\nset ylabel 'bending angle [deg]'\n"
            "plot '%s' skip 2 using ($1*1e3):2 with linespoints pt 7 ps 0.6 lw 2 title "
-           "'FEM, Mohr-Coulomb continuum'\n", csv);
+           "'FEM, Mohr-Coulomb continuum'\n", "bending.csv");
   if (sa_plot_script(png, body)) sa_error_clear();
   if (sa_run_path(run, "piston_force.png", png)) {
     sa_error_clear();
@@ -471,7 +472,7 @@ static void make_plots(const SaRun *run) {
            "set xlabel 'piston displacement [mm]'\nset ylabel 'force [N]'\n"
            "plot '%s' skip 2 using ($1*1e3):3 with linespoints pt 7 ps 0.6 lw 2 title 'piston "
            "force', '' skip 2 using ($1*1e3):9 with lines title 'barrel friction (up)', "
-           "'' skip 2 using ($1*1e3):10 with lines title 'cavity wall + floor (up)'\n", csv);
+           "'' skip 2 using ($1*1e3):10 with lines title 'cavity wall + floor (up)'\n", "bending.csv");
   if (sa_plot_script(png, body)) sa_error_clear();
   if (sa_run_path(run, "volume.png", png)) {
     sa_error_clear();
@@ -483,7 +484,7 @@ static void make_plots(const SaRun *run) {
            "set ylabel 'volume [mm^3]'\n"
            "plot '%s' skip 2 using ($1*1e3):($4*1e9) with lines lw 2 title 'displaced volume', "
            "'' skip 2 using ($1*1e3):($6*1e9) with lines lw 2 title 'cavity volume change', "
-           "'' skip 2 using ($1*1e3):(-$7*1e9) with lines lw 2 title 'fill volume loss'\n", csv);
+           "'' skip 2 using ($1*1e3):(-$7*1e9) with lines lw 2 title 'fill volume loss'\n", "bending.csv");
   if (sa_plot_script(png, body)) sa_error_clear();
 }
 

@@ -84,6 +84,16 @@ with tempfile.TemporaryDirectory() as tmp:
         if shutil.which("gnuplot") and not os.path.exists(os.path.join(out, "q_axial_strain.png")):
             fails.append(f"{name}: q_axial_strain.png missing")
 
+    # plots with a relative --out (the README's default results/<case>): gnuplot runs in the
+    # results folder, so its script must name the CSV without the folder (it named
+    # results/<case>/triaxial.csv, and no PNG was drawn)
+    if shutil.which("gnuplot"):
+        r = subprocess.run([exe, "run", os.path.abspath(case), "--out", "rel/out", "--quiet"],
+                           capture_output=True, text=True, timeout=120, cwd=tmp)
+        for png in ("q_axial_strain.png", "volumetric_strain.png"):
+            path = os.path.join(tmp, "rel", "out", png)
+            if r.returncode != 0 or not os.path.isfile(path) or os.path.getsize(path) == 0:
+                fails.append(f"relative --out: {png} not drawn (exit {r.returncode}) {r.stderr[-300:]}")
     for name, sets, text, needles in BAD:
         path = case
         if text is not None:
