@@ -58,7 +58,7 @@ typedef struct {
   /* iterated coupling step ([coupling] iterations > 1): quasi-Newton, the step's start */
   DemIqn *iqn;
   FemSnapshot *snap;
-  double *x_start, *x_try, *x_next, *f_app0;
+  double *x_start, *x_try, *x_next, *f_app0, *x_hang;
   double t_rollback, it_res, it_res_max;
   int it_last, it_sum, it_max, it_steps, it_unconverged;
   /* DEM */
@@ -191,7 +191,9 @@ static int setup_fem(Run *g) {
   if (g->sc->coupling.iterations > 1) {
     g->x_start = malloc(sizeof(double) * v3), g->x_try = malloc(sizeof(double) * v3);
     g->x_next = malloc(sizeof(double) * v3), g->f_app0 = malloc(sizeof(double) * v3);
-    SA_REQUIRE(g->x_start && g->x_try && g->x_next && g->f_app0, SA_ERR_MEMORY, "iteration buffers");
+    g->x_hang = malloc(sizeof(double) * v3);
+    SA_REQUIRE(g->x_start && g->x_try && g->x_next && g->f_app0 && g->x_hang, SA_ERR_MEMORY,
+               "iteration buffers");
     /* 3 columns per iteration at most matter; 40 hold several steps' worth */
     SA_CHECK(dem_iqn_create(3 * g->nv, 40, g->sc->coupling.qn_reuse, &g->iqn));
   }
@@ -200,6 +202,9 @@ static int setup_fem(Run *g) {
     SA_CHECK(fem_solver_add_contributor(g->s, &c));
   }
   fem_coupling_surface_gather(g->cs, fem_solver_positions(g->s), g->xw_cur);
+  /* the hanging wall before any grain: the iterated step's scale (a resumed run computes the
+   * same hanging state before it reads its checkpoint) */
+  if (g->x_hang) memcpy(g->x_hang, g->xw_cur, sizeof(double) * v3);
   memcpy(g->xw_prev, g->xw_cur, sizeof(double) * v3);
   memcpy(g->xw, g->xw_cur, sizeof(double) * v3);
   g->V0 = fem_solver_cavity_volume(g->s);
@@ -670,7 +675,7 @@ static double norm2(const double *a, const double *b, int n) {
 /* One coupling step iterated to the interface equilibrium: the DEM moves the wall from where
  * it is (x_start) to a trial end position x, the FEM answers with x~ = H(x) under the step's
  * wall forces, and IQN-ILS (dem_iqn.h) proposes the next x, until its update |x_next - x| <=
- * iteration_tol |x~ - x_start|. Each repeat starts again from the step's start: the FEM from a snapshot, the
+ * iteration_tol |x~ - x_hang| (x_hang: the wall hanging before the grains came). Each repeat starts again from the step's start: the FEM from a snapshot, the
  * DEM from a checkpoint written at the start. The first trial extrapolates the last step's
  * wall motion. With the Robin springs the FEM knows the bed's local stiffness (a
  * preconditioner); at the converged x their force vanishes (anchor = x), so the answer does
@@ -709,19 +714,21 @@ static int coupling_step_iterated(Run *g, double z0, double v, double T, double 
      * springs the residual of a soft mode (the actuator bending with its bed) is the error
      * times K_wall / (K_wall + K_if), tiny while the error is not (docs/dem.md: stopping on
      * it left the angle depending on interface_stiffness); the secant model scales it back.
-     * The step's own wall motion is the scale: an update below tol of it means the wall is
-     * within tol of one step from the interface equilibrium (1 nm per node floors it). */
-    double step_motion = fmax(norm2(g->xw_cur, g->x_start, n3), 1e-9 * sqrt((double)g->nv));
-    double r_rel = norm2(g->xw_cur, g->x_try, n3) / step_motion;
+     * The scale is what the grains have done to the wall so far, |x~ - x_hang| (the step's
+     * own motion vanishes with the piston at rest, where grain noise then sets the floor). */
+    double scale = fmax(norm2(g->xw_cur, g->x_hang, n3), 1e-9 * sqrt((double)g->nv));
+    double step_motion = norm2(g->xw_cur, g->x_start, n3);
+    double r_rel = norm2(g->xw_cur, g->x_try, n3) / scale;
     SA_CHECK(dem_iqn_update(g->iqn, g->x_try, g->xw_cur, g->x_next));
-    res = norm2(g->x_next, g->x_try, n3) / step_motion;
+    res = norm2(g->x_next, g->x_try, n3) / scale;
     double ang = NAN;
     if (sa_log_get_level() >= SA_LOG_DEBUG &&
         fem_bending_angle(g->m, g->sc->coupling.tip_surface, fem_solver_positions(g->s), &ang))
       sa_error_clear();
-    sa_log(SA_LOG_DEBUG, "dem", "coupling iteration %d: update / step motion %.3g, residual / "
-           "step motion %.3g (step motion %.3g nm rms), %d quasi-Newton columns, %d Newton, "
-           "angle %.4f deg", it + 1, res, r_rel, 1e9 * step_motion / sqrt((double)g->nv),
+    sa_log(SA_LOG_DEBUG, "dem", "coupling iteration %d: update %.3g, residual %.3g of the "
+           "grains' wall displacement (%.3g nm rms; this step %.3g nm rms), %d quasi-Newton "
+           "columns, %d Newton, angle %.4f deg", it + 1, res, r_rel,
+           1e9 * scale / sqrt((double)g->nv), 1e9 * step_motion / sqrt((double)g->nv),
            dem_iqn_columns(g->iqn), g->newton, ang);
     if (res <= cc->iteration_tol || it + 1 >= cc->iterations) break;
     memcpy(g->x_try, g->x_next, bytes);
@@ -737,7 +744,7 @@ static int coupling_step_iterated(Run *g, double z0, double v, double T, double 
   if (res > cc->iteration_tol) {
     g->it_unconverged++;
     sa_log(SA_LOG_WARN, "dem", "coupling step not converged in %d iterations: quasi-Newton "
-           "update / step motion = %.3g > iteration_tol = %g (accepted; raise [coupling] iterations)",
+           "update / grains' wall displacement = %.3g > iteration_tol = %g (accepted; raise [coupling] iterations)",
            it + 1, res, cc->iteration_tol);
   }
   return 0;
@@ -1208,7 +1215,7 @@ static void run_free(Run *g) {
   free(g->mats);
   double *bufs[] = {g->xw_prev, g->xw_cur, g->xw, g->vw, g->f_tri, g->f_sum, g->f_node,
                     g->f_app, g->px, g->pv, g->pf, g->pr, g->sigma, g->vm, g->reg,
-                    g->k_if, g->n_if, g->a_if, g->x_start, g->x_try, g->x_next, g->f_app0};
+                    g->k_if, g->n_if, g->a_if, g->x_start, g->x_try, g->x_next, g->f_app0, g->x_hang};
   for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++) free(bufs[i]);
   for (int k = 0; k < N_MESH; k++) free(g->mesh_x[k]), free(g->mesh_f[k]);
   free(g->piston_v);

@@ -81,10 +81,10 @@ static const SaParam coupling_params[] = {
      "wall follows the bed with a lag, docs/dem.md); > 1 = the step is rolled back (DEM from "
      "an in-memory checkpoint, FEM from a snapshot) and repeated with quasi-Newton (IQN-ILS) "
      "wall positions until the wall the FEM returns is the wall the DEM saw"},
-    {"iteration_tol", SA_PARAM_REAL, P(iteration_tol), "-", "0.1", 0, 1, SA_MIN_OPEN, NULL,
+    {"iteration_tol", SA_PARAM_REAL, P(iteration_tol), "-", "0.03", 0, 1, SA_MIN_OPEN, NULL,
      "an iterated step is converged when the quasi-Newton update of the wall (2-norm over its "
-     "nodes) is below this fraction of the wall's motion over the step: the wall is within this "
-     "fraction of one step of the interface equilibrium"},
+     "nodes) is below this fraction of the wall's displacement by the grains so far (from its "
+     "hanging shape before the pour)"},
     {"qn_reuse", SA_PARAM_INT, P(qn_reuse), "-", "8", 0, 1000, 0, NULL,
      "coupling steps whose quasi-Newton columns are reused (the bed's response changes slowly)"},
     {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,
