@@ -24,18 +24,9 @@ pour() { # bed key=value ...   (grain properties of the pour)
   "$EXE" run $CASE --out "$OUT/$bed" --set grains.diameter=$D --set piston.stroke=1e-3 \
     --set coupling.checkpoint_every=5 --set coupling.vtk_every=0 $sets || true
 }
+. "$(dirname "$0")/resume_variant.sh"
 run() { # bed label stroke key=value ...
-  bed=$1; label=$2; stroke=$3; shift 3
-  [ -f "$OUT/$label/summary.ini" ] && return 0
-  rm -rf "$OUT/$label"
-  cp -r "$OUT/$bed" "$OUT/$label"
-  rm -f "$OUT/$label/bending.csv" "$OUT/$label/summary.ini"
-  sets=""
-  for kv in "$@"; do sets="$sets --set $kv"; done
-  # shellcheck disable=SC2086
-  "$EXE" run $CASE --out "$OUT/$label" --set grains.diameter=$D --set piston.stroke=$stroke \
-    --set coupling.vtk_every=0 --set coupling.checkpoint_every=0 --set coupling.resume=true \
-    $sets || true
+  resume_variant "$@"
 }
 NORINGS='material.regions=silicone:silicone,strain_limit:limit,reinforcement:silicone'
 NOBARREL='grains.friction_piston=0'

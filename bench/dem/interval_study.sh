@@ -16,17 +16,10 @@ if [ ! -f "$OUT/base/checkpoint/state.ckpt" ]; then
   "$EXE" run $CASE --out "$OUT/base" --set grains.diameter=$D --set piston.stroke=1e-3 \
     --set coupling.checkpoint_every=5 --set coupling.vtk_every=0 || true
 fi
+. "$(dirname "$0")/resume_variant.sh"
 run() { # label key=value ...
-  label=$1; shift
-  [ -f "$OUT/$label/summary.ini" ] && return 0
-  rm -rf "$OUT/$label"
-  cp -r "$OUT/base" "$OUT/$label"
-  rm -f "$OUT/$label/bending.csv" "$OUT/$label/summary.ini"
-  sets=""
-  for kv in "$@"; do sets="$sets --set $kv"; done
-  "$EXE" run $CASE --out "$OUT/$label" --set grains.diameter=$D --set piston.stroke=$S \
-    --set coupling.vtk_every=0 --set coupling.checkpoint_every=0 --set coupling.resume=true \
-    $sets || true
+  l=$1; shift
+  resume_variant base "$l" "$S" "$@"
 }
 run interval_0.5mm coupling.interval=5e-4
 run interval_0.25mm coupling.interval=2.5e-4

@@ -21,18 +21,10 @@ if [ ! -f "$OUT/bed/checkpoint/state.ckpt" ]; then
   "$EXE" run $CASE --out "$OUT/bed" --set grains.diameter=$D --set piston.stroke=1e-3 \
     --set coupling.checkpoint_every=5 --set coupling.vtk_every=0 $sets || true
 fi
+. "$(dirname "$0")/resume_variant.sh"
 run() { # label key=value ...
-  label=$1; shift
-  [ -f "$OUT/$label/summary.ini" ] && return 0
-  rm -rf "$OUT/$label"
-  cp -r "$OUT/bed" "$OUT/$label"
-  rm -f "$OUT/$label/bending.csv" "$OUT/$label/summary.ini"
-  sets=""
-  for kv in "$@"; do sets="$sets --set $kv"; done
-  # shellcheck disable=SC2086
-  "$EXE" run $CASE --out "$OUT/$label" --set grains.diameter=$D --set piston.stroke=$S \
-    --set coupling.vtk_every=0 --set coupling.checkpoint_every=0 --set coupling.resume=true \
-    $sets > "$OUT/$label.log" 2>&1 || true
+  l=$1; shift
+  resume_variant bed "$l" "$S" "$@" > "$OUT/$l.log" 2>&1
 }
 # shellcheck disable=SC2086
 run staggered_k1 $OLD
