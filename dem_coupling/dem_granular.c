@@ -666,9 +666,10 @@ static int dem_reload(Run *g, const char *path, double z_start) {
   return rc;
 }
 
-static double norm2(const double *a, const double *b, int n) {
+/* |a - b|_2 */
+static double dist2(const double *a, const double *b, int n) {
   double s = 0;
-  for (int i = 0; i < n; i++) s += (a[i] - (b ? b[i] : 0)) * (a[i] - (b ? b[i] : 0));
+  for (int i = 0; i < n; i++) s += (a[i] - b[i]) * (a[i] - b[i]);
   return sqrt(s);
 }
 
@@ -716,11 +717,11 @@ static int coupling_step_iterated(Run *g, double z0, double v, double T, double 
      * it left the angle depending on interface_stiffness); the secant model scales it back.
      * The scale is what the grains have done to the wall so far, |x~ - x_hang| (the step's
      * own motion vanishes with the piston at rest, where grain noise then sets the floor). */
-    double scale = fmax(norm2(g->xw_cur, g->x_hang, n3), 1e-9 * sqrt((double)g->nv));
-    double step_motion = norm2(g->xw_cur, g->x_start, n3);
-    double r_rel = norm2(g->xw_cur, g->x_try, n3) / scale;
+    double scale = fmax(dist2(g->xw_cur, g->x_hang, n3), 1e-9 * sqrt((double)g->nv));
+    double step_motion = dist2(g->xw_cur, g->x_start, n3);
+    double r_rel = dist2(g->xw_cur, g->x_try, n3) / scale;
     SA_CHECK(dem_iqn_update(g->iqn, g->x_try, g->xw_cur, g->x_next));
-    res = norm2(g->x_next, g->x_try, n3) / scale;
+    res = dist2(g->x_next, g->x_try, n3) / scale;
     double ang = NAN;
     if (sa_log_get_level() >= SA_LOG_DEBUG &&
         fem_bending_angle(g->m, g->sc->coupling.tip_surface, fem_solver_positions(g->s), &ang))
