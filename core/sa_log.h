@@ -22,6 +22,10 @@ void sa_log_bar_active(int active);
 /* Monotonic wall time in seconds. */
 double sa_time_now(void);
 
+/* CPU time of this process (user + system, all threads) in seconds: the cost of a run on a
+ * machine shared with other jobs, where wall time depends on their load. */
+double sa_cpu_time(void);
+
 /* Named accumulators: sa_timing_add("assemble", dt). Printed by sa_timing_report as a table
  * "phase  seconds  calls  share". Thread-safe. */
 void sa_timing_add(const char *phase, double seconds);

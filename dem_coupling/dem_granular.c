@@ -989,10 +989,12 @@ static int write_summary(Run *g, double s_reached, const char *status, double wa
           g->n_grains, g->inertial, g->inertial_max);
   fprintf(fp, "\n[dem]\ntime_step = %.6g ; s\nyoung_used = %.6g ; Pa\n", g->dt,
           g->sc->grains.young / g->sc->grains.softening);
-  fprintf(fp, "\n[timing]\nwall = %.3f ; s\ndem = %.3f ; s\nexchange = %.3f ; s\nfem = %.3f ; s\n"
+  fprintf(fp, "\n[timing]\nwall = %.3f ; s\n"
+          "cpu = %.3f ; s (this process, user + system, all threads)\n"
+          "dem = %.3f ; s\nexchange = %.3f ; s\nfem = %.3f ; s\n"
           "checks = %.3f ; s\noutput = %.3f ; s\nexchange_over_dem = %.4f\nfem_over_dem = %.4f\n"
-          "dem_share = %.4f\n", wall, g->t_dem, g->t_exchange, g->t_fem, g->t_checks, g->t_out,
-          g->t_exchange / fmax(g->t_dem, 1e-12), g->t_fem / fmax(g->t_dem, 1e-12),
+          "dem_share = %.4f\n", wall, sa_cpu_time(), g->t_dem, g->t_exchange, g->t_fem, g->t_checks,
+          g->t_out, g->t_exchange / fmax(g->t_dem, 1e-12), g->t_fem / fmax(g->t_dem, 1e-12),
           g->t_dem / fmax(tot, 1e-12));
   fprintf(fp, "\n[fem]\nnodes = %d\nelements = %d\nwall_vertices = %d\nwall_triangles = %d\n"
           "factorisations = %d\nreused_factors = %d\nassemblies = %d\n", st.nnodes, st.nelem,

@@ -11,22 +11,9 @@ run counts: its summary says how far it got). Writes OUTDIR/study.md (a Markdown
 stroke reached, angle and piston force at every 5 mm, timing split) and OUTDIR/angle.png,
 OUTDIR/force.png (every variant on one plot, gnuplot). Runs are sequential: on a 2-core machine
 parallel runs only distort each other's timings."""
-import csv, os, subprocess, sys
-
-def read_summary(path):
-    out, sec = {}, ""
-    for line in open(path):
-        line = line.split(";")[0].strip()
-        if line.startswith("["):
-            sec = line.strip("[]") + "."
-        elif "=" in line:
-            k, v = [x.strip() for x in line.split("=", 1)]
-            out[sec + k] = v
-    return out
-
-def read_curve(path):
-    lines = open(path).readlines()[1:]
-    return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(lines)]
+import os, subprocess, sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from study_io import read_summary, read_curve
 
 def at(rows, s, key):
     best = min(rows, key=lambda r: abs(r["piston_displacement"] - s)) if rows else None
