@@ -15,16 +15,11 @@ S2=${4:-4e-3}   # the frictionless barrel goes further
 EXE=${EXE:-build/apps/softact}
 CASE=cases/granular_bending_dem.ini
 mkdir -p "$OUT"
-pour() { # bed key=value ...   (grain properties of the pour)
-  bed=$1; shift
-  [ -f "$OUT/$bed/checkpoint/state.ckpt" ] && return 0
-  sets=""
-  for kv in "$@"; do sets="$sets --set $kv"; done
-  # shellcheck disable=SC2086
-  "$EXE" run $CASE --out "$OUT/$bed" --set grains.diameter=$D --set piston.stroke=1e-3 \
-    --set coupling.checkpoint_every=5 --set coupling.vtk_every=0 $sets || true
-}
 . "$(dirname "$0")/resume_variant.sh"
+pour() { # bed key=value ...   (grain properties of the pour)
+  b=$1; shift
+  pour_bed "$b" 1e-3 "$@"
+}
 run() { # bed label stroke key=value ...
   resume_variant "$@"
 }

@@ -16,17 +16,11 @@ S=${3:-1e-3}
 EXE=${EXE:-build/apps/softact}
 CASE=cases/granular_bending_dem.ini
 mkdir -p "$OUT"
-pour() { # bed key=value ...   (grain properties or mesh of the pour)
-  bed=$1; shift
-  [ -f "$OUT/$bed/checkpoint/state.ckpt" ] && return 0
-  sets=""
-  for kv in "$@"; do sets="$sets --set $kv"; done
-  # shellcheck disable=SC2086
-  "$EXE" run $CASE --out "$OUT/$bed" --set grains.diameter=$D --set piston.stroke=2.5e-4 \
-    --set coupling.checkpoint_every=5 --set coupling.vtk_every=0 $sets > "$OUT/$bed.log" 2>&1 \
-    || true
-}
 . "$(dirname "$0")/resume_variant.sh"
+pour() { # bed key=value ...   (grain properties or mesh of the pour)
+  b=$1; shift
+  pour_bed "$b" 2.5e-4 "$@" > "$OUT/$b.log" 2>&1
+}
 run() { # bed label key=value ...
   b=$1; l=$2; shift 2
   resume_variant "$b" "$l" "$S" "$@" > "$OUT/$l.log" 2>&1

@@ -38,29 +38,30 @@ def main():
     md = ["| parameter | variant | cost [s CPU] | "
           + " | ".join(f"angle at {m:g} mm [deg]" for m in marks)
           + " | error against the reference |", "|---|---|---|" + "---|" * len(marks) + "---|"]
+    def angles(label):
+        """(summary, angles at the marks) of a variant, or (None, why) when it has none."""
+        if not os.path.exists(os.path.join(outdir, label, "summary.ini")):
+            return None, ("not run",)
+        s, rows = load(label)
+        a = [value_at(rows, m * 1e-3, "bending_angle") for m in marks]
+        if any(x is None for x in a):
+            return None, (f"{cost(s):.0f}", "does not reach every mark")
+        return s, a
+    ncol = 4 + len(marks)
+    row = lambda *cells: "| " + " | ".join(list(cells) + [""] * (ncol - len(cells))) + " |"
     plot = []
     for name, ref, labels in groups:
-        if not os.path.exists(os.path.join(outdir, ref, "summary.ini")):
-            md.append(f"| {name} | {ref} (reference) | not run |" + " |" * (len(marks) + 1))
-            continue
-        rs, rrows = load(ref)
-        ra = [value_at(rrows, m * 1e-3, "bending_angle") for m in marks]
-        if any(a is None for a in ra):
-            md.append(f"| {name} | {ref} (reference) | does not reach every mark |"
-                      + " |" * (len(marks) + 1))
+        rs, ra = angles(ref)
+        if rs is None:
+            md.append(row(name, f"{ref} (reference)", *ra))
             continue
         md.append(f"| {name} | {ref} (reference) | {cost(rs):.0f} | "
                   + " | ".join(f"{a:.3f}" for a in ra) + " | - |")
         pts = [(cost(rs), FLOOR, ref, 1)]
         for l in labels:
-            if not os.path.exists(os.path.join(outdir, l, "summary.ini")):
-                md.append(f"| {name} | {l} | not run |" + " |" * (len(marks) + 1))
-                continue
-            s, rows = load(l)
-            a = [value_at(rows, m * 1e-3, "bending_angle") for m in marks]
-            if any(x is None for x in a):
-                md.append(f"| {name} | {l} | {cost(s):.0f} | not every mark reached |"
-                          + " |" * len(marks))
+            s, a = angles(l)
+            if s is None:
+                md.append(row(name, l, *a))
                 continue
             e = max(abs(x - r) / abs(r) for x, r in zip(a, ra))
             md.append(f"| {name} | {l} | {cost(s):.0f} | " + " | ".join(f"{x:.3f}" for x in a)

@@ -12,11 +12,8 @@ S=${3:-2e-3}
 EXE=${EXE:-build/apps/softact}
 CASE=cases/granular_bending_dem.ini
 mkdir -p "$OUT"
-if [ ! -f "$OUT/base/checkpoint/state.ckpt" ]; then
-  "$EXE" run $CASE --out "$OUT/base" --set grains.diameter=$D --set piston.stroke=1e-3 \
-    --set coupling.checkpoint_every=5 --set coupling.vtk_every=0 || true
-fi
 . "$(dirname "$0")/resume_variant.sh"
+pour_bed base 1e-3
 run() { # label key=value ...
   l=$1; shift
   resume_variant base "$l" "$S" "$@"

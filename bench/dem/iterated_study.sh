@@ -14,14 +14,9 @@ EXE=${EXE:-build/apps/softact}
 CASE=cases/granular_bending_dem.ini
 OLD='coupling.iterations=1 coupling.interface_stiffness=1 coupling.interface_tangential=1'
 mkdir -p "$OUT"
-if [ ! -f "$OUT/bed/checkpoint/state.ckpt" ]; then
-  sets=""
-  for kv in $OLD; do sets="$sets --set $kv"; done
-  # shellcheck disable=SC2086
-  "$EXE" run $CASE --out "$OUT/bed" --set grains.diameter=$D --set piston.stroke=1e-3 \
-    --set coupling.checkpoint_every=5 --set coupling.vtk_every=0 $sets || true
-fi
 . "$(dirname "$0")/resume_variant.sh"
+# shellcheck disable=SC2086
+pour_bed bed 1e-3 $OLD
 run() { # label key=value ...
   l=$1; shift
   resume_variant bed "$l" "$S" "$@" > "$OUT/$l.log" 2>&1

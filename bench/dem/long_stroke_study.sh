@@ -20,14 +20,9 @@ EXE=${EXE:-build/apps/softact}
 CASE=cases/granular_bending_dem.ini
 COMMON="grains.softening=$SOFT piston.speed=0.1"
 mkdir -p "$OUT"
-if [ ! -f "$OUT/bed/checkpoint/state.ckpt" ]; then
-  sets=""
-  for kv in $COMMON; do sets="$sets --set $kv"; done
-  # shellcheck disable=SC2086
-  "$EXE" run $CASE --out "$OUT/bed" --set grains.diameter=$D --set piston.stroke=2.5e-4 \
-    --set coupling.checkpoint_every=5 --set coupling.vtk_every=0 $sets || true
-fi
 . "$(dirname "$0")/resume_variant.sh"
+# shellcheck disable=SC2086
+pour_bed bed 2.5e-4 $COMMON
 NORINGS='material.regions=silicone:silicone,strain_limit:limit,reinforcement:silicone'
 variant() { # label key=value ...   (resumes its own checkpoint when it has one)
   l=$1; shift
