@@ -361,7 +361,9 @@ static int grain_stats(Run *g, double *v_rms, double *z_max) {
   return 0;
 }
 
-/* Run the DEM for time t [s] with nothing moving, in chunks (interruptible). */
+/* Run the DEM for time t [s] with nothing moving (pour and settling), in chunks: a signal stops
+ * it after the current chunk with SA_ERR_INTERRUPTED (a settling loop that only saw a short
+ * advance would otherwise count time it never simulated and report an unsettled bed). */
 static int dem_advance(Run *g, double t) {
   long steps = (long)ceil(t / g->dt);
   double t0 = sa_time_now();
@@ -374,6 +376,8 @@ static int dem_advance(Run *g, double t) {
     if (sa_interrupted()) break;
   }
   g->t_dem += sa_time_now() - t0;
+  SA_REQUIRE(!sa_interrupted(), SA_ERR_INTERRUPTED, "interrupted while pouring and settling the "
+             "bed (nothing to resume: a checkpoint is written only once the bed is preloaded)");
   return 0;
 }
 
