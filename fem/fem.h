@@ -63,15 +63,21 @@ typedef enum {
   FEM_MERIT_LAZY = 0,  /* backtrack only on a domain error, NaN or |R| growth > ls_growth */
   FEM_MERIT_ENERGY = 1 /* Armijo backtracking (quadratic interpolation) on the total potential
                         * Pi = W(u) - p V(u) - f_dead.u when it is one (static, load control,
-                        * no contributors) and the direction descends; else LAZY */
+                        * no contributors) and the direction descends; else LAZY. Stalled
+                        * then means max_stall exhausted line searches in a row, not a
+                        * residual norm that fails to halve (it is no merit there) */
 } FemMerit;
 
 /* What a Newton iteration does when CHOLMOD finds the tangent not positive definite. */
 typedef enum {
   FEM_INDEFINITE_LU = 0,       /* UMFPACK LU of the consistent tangent */
   FEM_INDEFINITE_MODIFY = 1    /* Cholesky of K_int + beta p K_q, beta = p_last/p then 0 (the
-                                * load stiffness of the converged pressure, then none); if that
-                                * too is not positive definite the substep fails (recoverable:
+                                * load stiffness of the converged pressure, then none). At a
+                                * Newton iterate past the first, a consistent tangent that is
+                                * not positive definite means the iterate went too far: the
+                                * step to it is halved (up to the line search's limit; then
+                                * K_int alone is tried). If even that fails, or at the first
+                                * iterate, the substep fails (recoverable:
                                 * the increment is cut; a limit point is diagnosed as before) */
 } FemIndefinite;
 
@@ -101,6 +107,9 @@ typedef struct {
                       * iteration (0, the default = full Newton: fresh factors every iteration) */
   FemMerit merit;    /* line-search merit */
   double armijo;     /* energy merit: sufficient decrease Pi(a) <= Pi(0) + armijo a Pi'(0) */
+  int ls_memory;     /* energy merit: Pi(0) above is the largest potential of the last
+                      * ls_memory accepted iterates (1 = monotone; > 1 non-monotone, Grippo,
+                      * Lampariello and Lucidi 1986; at most 8) */
   FemIndefinite indefinite; /* not positive definite tangent: LU or modified Cholesky */
   int krylov_max;    /* > 0: a Newton direction is first sought by preconditioned CG on the
                       * current tangent with the last Cholesky factors as preconditioner, up
@@ -158,6 +167,7 @@ typedef struct {
   int n_modified;           /* factorisations of a modified (load stiffness reduced) tangent */
   int n_not_pd;             /* CHOLMOD attempts that found a tangent not positive definite */
   int n_ls_energy;          /* backtracks on the energy merit */
+  int n_indef_backtrack;    /* backtracks because even K_int was indefinite (modify) */
   int n_krylov;             /* Newton directions from PCG on the last factors */
   int n_krylov_it;          /* PCG iterations (each a product with K and a factor solve) */
   int n_krylov_fail;        /* PCG attempts abandoned (limit, negative curvature) */

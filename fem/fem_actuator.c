@@ -86,12 +86,16 @@ static const SaParam solver_params[] = {
      "(Armijo on the total potential where it is one)"},
     {"indefinite", SA_PARAM_CHOICE, P(indefinite), "-", "lu", 0, 0, 0, "lu|modify",
      "tangent not positive definite: UMFPACK LU, or Cholesky with the load stiffness reduced "
-     "(the increment is cut if that is indefinite too)"},
+     "(at a later Newton iterate the step to it is halved first; the increment is cut if "
+     "even K_int is indefinite)"},
     {"krylov_max", SA_PARAM_INT, P(krylov_max), "-", "0", 0, 1000, 0, NULL,
      "PCG iterations on the current tangent, preconditioned by the last Cholesky factors, "
      "before refactorising (0 = off)"},
     {"krylov_rtol", SA_PARAM_REAL, P(krylov_rtol), "-", "1e-3", 1e-12, 0.5, 0, NULL,
      "PCG stop: linear residual relative to the Newton residual"},
+    {"ls_memory", SA_PARAM_INT, P(ls_memory), "-", "1", 1, 8, 0, NULL,
+     "energy merit: Armijo test against the largest potential of this many last iterates "
+     "(1 = monotone; more lets the full steps of a nearly incompressible solid pass)"},
 };
 #undef P
 const SaParamTable fem_actuator_mesh_table = {
@@ -352,5 +356,6 @@ FemSolverParams fem_actuator_solver_params(const FemActuatorCase *a, int run_thr
   prm.indefinite = !strcmp(c->indefinite, "modify") ? FEM_INDEFINITE_MODIFY : FEM_INDEFINITE_LU;
   prm.krylov_max = c->krylov_max;
   prm.krylov_rtol = c->krylov_rtol;
+  prm.ls_memory = c->ls_memory;
   return prm;
 }

@@ -25,7 +25,7 @@ typedef struct {
 
 typedef struct {
   double rtol, dl_min, reuse_rate, krylov_rtol;
-  int max_iter, threads, krylov_max;
+  int max_iter, threads, krylov_max, ls_memory;
   char linear_solver[SA_STR_MAX], predictor[SA_STR_MAX], merit[SA_STR_MAX], indefinite[SA_STR_MAX];
 } FemSolverCaseParams;
 

@@ -79,12 +79,22 @@ static int try_cholesky(FemSolver *s) {
  * definite approximation of the Hessian of the potential gives a descent direction that the
  * energy line search can damp. Returns 0 (CHOLMOD factors of val), SA_ERR_NOT_SPD when every
  * attempt failed (val restored to the consistent tangent), < 0 on a library error. */
-static int factorize_modified(FemSolver *s, double p_asm) {
+static int factorize_modified(FemSolver *s, double p_asm, int at_iterate, int step_back) {
   int rc = try_cholesky(s);
   if (rc <= 0) return rc;
+  /* Away from the converged state (at_iterate) K_int + beta p K_q is no equilibrium tangent,
+   * and on the actuator ramp every consistent tangent that failed there had K_int indefinite
+   * too (docs/fem_time_to_accuracy.md): while the caller can still step back toward the last
+   * accepted iterate it does so at once (step_back), else K_int alone is tried. Each saved
+   * attempt is a factorisation. */
+  if (step_back) {
+    s->nw.saw_not_pd = 1;
+    s->nw.have_factors = 0;
+    return SA_ERR_NOT_SPD;
+  }
   double betas[2] = {0.0, 0.0}, cur = 1.0;
   int nb = 0;
-  if (s->ct.p_last > 0 && s->ct.p_last < p_asm) betas[nb++] = s->ct.p_last / p_asm;
+  if (!at_iterate && s->ct.p_last > 0 && s->ct.p_last < p_asm) betas[nb++] = s->ct.p_last / p_asm;
   betas[nb++] = 0.0;
   for (int i = 0; i < nb; i++) {
     if (sa_interrupted()) break; /* each attempt is a factorisation (seconds) */
@@ -106,7 +116,8 @@ static int factorize_modified(FemSolver *s, double p_asm) {
 }
 
 /* p_asm: the pressure whose load stiffness the assembled tangent holds. */
-static int factorize(FemSolver *s, const StepKind *sk, double p_asm, int eff_done) {
+static int factorize(FemSolver *s, const StepKind *sk, double p_asm, int eff_done,
+                     int at_iterate, int step_back) {
   if (sk->dynamic && !eff_done) fem_dyn_effective_tangent(s, sk);
   /* CHOLMOD at every iteration: a tangent that is indefinite at the first iteration of a
    * substep (the load increment applied to the converged state) is usually positive definite
@@ -129,7 +140,7 @@ static int factorize(FemSolver *s, const StepKind *sk, double p_asm, int eff_don
   int rc;
   if (sym && s->prm.indefinite == FEM_INDEFINITE_MODIFY && !sk->dynamic && s->as.npf > 0 &&
       p_asm > 0 && s->ct.control == FEM_CONTROL_LOAD) {
-    rc = factorize_modified(s, p_asm);
+    rc = factorize_modified(s, p_asm, at_iterate, step_back);
     if (rc == 0) {
       s->st.n_factor++;
       s->st.n_chol++;
@@ -143,6 +154,7 @@ static int factorize(FemSolver *s, const StepKind *sk, double p_asm, int eff_don
      * that need not descend (cheaper: LU costs ~6 Cholesky; measured in
      * docs/fem_time_to_accuracy.md). A limit point is still diagnosed: fail_not_pd is set. */
     s->nw.saw_not_pd = s->ct.fail_not_pd = 1;
+    s->nw.have_factors = 0; /* the factor object holds a failed factorisation */
     return SA_ERROR(SA_ERR_NOT_SPD, "tangent not positive definite even without the load "
                     "stiffness (indefinite = modify): increment too large or limit point");
   }
@@ -209,7 +221,14 @@ static int pcg(FemSolver *s, const double *b, double *x, int maxit, double rtol,
       x[i] += a * p[i];
       r[i] -= a * q[i];
     }
-    if (fem_nrm2(r, n) <= rtol * bn) return 0;
+    double rel = fem_nrm2(r, n) / bn;
+    if (rel <= rtol) return 0;
+    /* Abandon early when the mean reduction per iteration so far, continued to maxit, would
+     * still miss rtol by 10x: an attempt that fails costs maxit products and factor solves,
+     * about half a factorisation at maxit = 10 (32 of 92 attempts on the actuator ramp failed
+     * after all 10; docs/fem_time_to_accuracy.md). PCG converges at least as fast later, so
+     * the test errs toward going on. */
+    if (it >= 3 && it < maxit && rel * pow(rel, (double)(maxit - it) / it) > 10.0 * rtol) return 1;
     SA_CHECK(linsolve(s, r, z));
     double rz1 = fem_dot(r, z, n), be = rz1 / rz;
     rz = rz1;
@@ -223,7 +242,11 @@ typedef struct {
   int vol, it, ls, stall, nfresh, have_fact, fresh_last, reuse, krylov_last;
   double r_prev, r_first, merit_prev, step_len, dp, gb, du_norm, qnorm, p_pred;
   int emerit;       /* the energy merit applies to this substep */
+  int ls_exhausted; /* the last energy line search found no sufficient decrease */
   double p_asm;     /* pressure of the load stiffness in the assembled tangent */
+  double pi_hist[8]; /* potential at the last accepted iterates (non-monotone line search) */
+  int n_hist;
+  double pi_ref;     /* reference of the Armijo test: max of pi_hist (Pi(0) when monotone) */
   double pi, pi_prev, pi_scale, slope; /* potential now / at the accepted iterate, its scale,
                                         * Pi'(0) = R.du along the last direction */
 } Iter;
@@ -290,7 +313,16 @@ static FemNewtonReason stop_test(FemSolver *s, Iter *t, double rnorm, double fre
              "tolerance)", t->it, rnorm, rnorm / (s->prm.rtol * fref + s->prm.atol));
     return FEM_DIVERGED_MAX_ITER;
   }
-  t->stall = (t->it > 1 && rnorm > 0.5 * t->r_prev) ? t->stall + 1 : 0;
+  /* Stalled: under the energy merit, no sufficient decrease of the potential along the last
+   * descent direction (its line search exhausted); the residual norm is not the merit there
+   * and rises and falls by 10x between iterations that all decrease the potential (measured:
+   * a 15 kPa substep of the actuator was declared stalled at |R| 10 -> 8 -> 7.5 -> 5.5 -> 4.8
+   * -> 2.8, then cut and redone as two; docs/fem_time_to_accuracy.md). Otherwise: |R| not
+   * halved. */
+  if (t->emerit && t->slope < 0.0)
+    t->stall = t->ls_exhausted ? t->stall + 1 : 0;
+  else
+    t->stall = (t->it > 1 && rnorm > 0.5 * t->r_prev) ? t->stall + 1 : 0;
   if (t->stall >= s->prm.max_stall) {
     SA_ERROR(SA_ERR_NOT_CONVERGED, "Newton stalled (|R| %.3e not halved in %d iterations)",
              rnorm, t->stall);
@@ -344,7 +376,8 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
       s->st.n_krylov_fail++;
     }
   }
-  rc = use_old || krylov ? 0 : factorize(s, sk, t->p_asm, eff_done);
+  rc = use_old || krylov ? 0 : factorize(s, sk, t->p_asm, eff_done, t->it > 0,
+                                          t->it > 0 && t->ls < 10);
   if (!use_old && !krylov) t->nfresh++;
   else if (use_old) s->st.n_reuse++;
   t->fresh_last = !use_old && !krylov;
@@ -383,7 +416,14 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
   }
   t->du_norm = fem_nrm2(s->nw.du, nf);
   t->slope = t->emerit ? fem_dot(s->nw.R, s->nw.du, nf) : 0.0;
-  t->pi_prev = t->pi;
+  t->pi_prev = t->pi_ref = t->pi;
+  if (t->emerit) { /* the reference of the non-monotone Armijo test: max over ls_memory iterates */
+    int mem = s->prm.ls_memory < 1 ? 1 : s->prm.ls_memory > 8 ? 8 : s->prm.ls_memory;
+    t->pi_hist[t->n_hist % mem] = t->pi;
+    t->n_hist++;
+    int k = t->n_hist < mem ? t->n_hist : mem;
+    for (int i = 0; i < k; i++) t->pi_ref = fmax(t->pi_ref, t->pi_hist[i]);
+  }
   memcpy(s->nw.u_it, s->u, (size_t)s->ndof * sizeof *s->u);
   s->nw.p_it = s->p;
   t->merit_prev = merit;
@@ -468,9 +508,12 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
      * [0.1, 0.5] a; up to 10 backtracks, then the step is taken as it is. The round-off
      * allowance (1e-13 of the potential's terms) lets converged iterates pass. */
     int energy_ls = t.it > 0 && t.emerit && t.slope < 0.0;
-    if (energy_ls && !bad && t.ls < 10) {
+    t.ls_exhausted = 0;
+    if (energy_ls && !bad) {
       double a = t.step_len, dpi = t.pi - t.pi_prev;
-      if (dpi > s->prm.armijo * a * t.slope + 1e-13 * t.pi_scale) {
+      int decrease = t.pi - t.pi_ref <= s->prm.armijo * a * t.slope + 1e-13 * t.pi_scale;
+      if (!decrease && t.ls >= 10) t.ls_exhausted = 1;
+      if (!decrease && t.ls < 10) {
         double den = 2.0 * (dpi - t.slope * a);
         double an = den > 0.0 ? -t.slope * a * a / den : 0.5 * a;
         t.step_len = fmin(fmax(an, 0.1 * a), 0.5 * a);
@@ -535,6 +578,34 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
       return why > 0 ? 0 : SA_ERR_NOT_CONVERGED;
     }
     rc = direction(s, sk, &t, plan_reuse, rnorm, rate, c, merit, &why);
+    if (rc == SA_ERR_NOT_SPD && s->prm.indefinite == FEM_INDEFINITE_MODIFY && t.it > 0 &&
+        t.ls < 10) {
+      /* the tangent is indefinite here (the consistent one; K_int too once the line-search
+       * budget is spent): the last step carried the iterate too far. Step back toward the
+       * last accepted iterate (halve) instead of failing the whole substep and its
+       * iterations (docs/fem_time_to_accuracy.md, "Step-back"). */
+      sa_error_clear();
+      s->st.n_indef_backtrack++;
+      t.step_len *= 0.5;
+      t.ls++;
+      for (int d = 0; d < s->ndof; d++)
+        if (s->dm.eq[d] >= 0) s->u[d] = s->nw.u_it[d] + t.step_len * s->nw.du[s->dm.eq[d]];
+      s->p = s->nw.p_it + t.step_len * t.dp;
+      fem_set_x(s);
+      continue;
+    }
+    if (rc == SA_ERR_NOT_SPD && s->prm.indefinite == FEM_INDEFINITE_MODIFY && t.it == 0 &&
+        s->nw.extrapolated && t.ls < 4) {
+      /* the extrapolated start is too far for even K_int: halve the extrapolation, then u_n */
+      sa_error_clear();
+      s->st.n_indef_backtrack++;
+      t.ls++;
+      double f = t.ls < 4 ? 0.5 : 0.0;
+      for (int d = 0; d < s->ndof; d++)
+        if (s->dm.eq[d] >= 0) s->u[d] = s->u_last[d] + f * (s->u[d] - s->u_last[d]);
+      fem_set_x(s);
+      continue;
+    }
     if (rc) {
       *iters = t.it;
       s->nw.reason = why;

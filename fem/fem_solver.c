@@ -24,7 +24,7 @@ FemSolverParams fem_solver_params_default(void) {
       .threads = 2, .linsolver = FEM_LINSOLVER_AUTO, .sym_tol = 1e-9, .hht_alpha = -0.05,
       .mass_damping = 0.0, .ls_growth = 1e3, .max_stall = 6,
       .predictor = FEM_PREDICT_NEW_LOAD, .reuse_rate = 0.0,
-      .merit = FEM_MERIT_LAZY, .armijo = 1e-4, .indefinite = FEM_INDEFINITE_LU,
+      .merit = FEM_MERIT_LAZY, .armijo = 1e-4, .ls_memory = 1, .indefinite = FEM_INDEFINITE_LU,
       .krylov_max = 0, .krylov_rtol = 1e-3};
   return p;
 }

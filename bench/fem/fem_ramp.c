@@ -12,7 +12,7 @@
  *
  *   fem_ramp [key=value ...]   keys: h hb hr (mesh [m]), p_max [Pa], n_out, merit (lazy|energy),
  *     indefinite (lu|modify), predictor (new_load|equilibrium|reuse), reuse_rate, dl_init,
- *     easy_iter, grow, max_iter, dl_max, krylov_max, krylov_rtol, ref (1: measure the reference factorisation, 0: skip)
+ *     easy_iter, grow, max_iter, max_stall, ls_memory, rtol, dl_max, krylov_max, krylov_rtol, ref (1: measure the reference factorisation, 0: skip)
  * Output: one line per output step ("step p_kPa angle_deg"), then key = value lines. */
 #include <math.h>
 #include <stdio.h>
@@ -109,6 +109,9 @@ int main(int argc, char **argv) {
   prm.dl_max = atof(arg(argc, argv, "dl_max", "1"));
   prm.krylov_max = atoi(arg(argc, argv, "krylov_max", "0"));
   prm.krylov_rtol = atof(arg(argc, argv, "krylov_rtol", "1e-3"));
+  prm.max_stall = atoi(arg(argc, argv, "max_stall", "6"));
+  prm.ls_memory = atoi(arg(argc, argv, "ls_memory", "1"));
+  prm.rtol = atof(arg(argc, argv, "rtol", "1e-8"));
 
   FemMaterial mref[8], mats[8];
   FemMesh *m0 = NULL, *m = NULL;
@@ -150,10 +153,10 @@ int main(int argc, char **argv) {
   printf("factorisations = %d\ncholesky = %d\nlu = %d\nnot_pd_attempts = %d\nmodified = %d\n"
          "assemblies = %d\ntangent_assemblies = %d\nreused = %d\nenergy_backtracks = %d\n"
          "krylov_directions = %d\nkrylov_iterations = %d\nkrylov_failed = %d\n"
-         "newton_iterations = %d\nsubsteps = %d\ncuts = %d\n",
+         "indef_backtracks = %d\nnewton_iterations = %d\nsubsteps = %d\ncuts = %d\n",
          st.n_factor, st.n_chol, st.n_lu, st.n_not_pd, st.n_modified, st.n_assemble,
          st.n_assemble_tangent, st.n_reuse, st.n_ls_energy, st.n_krylov, st.n_krylov_it,
-         st.n_krylov_fail, iters_total, substeps_total, cuts_total);
+         st.n_krylov_fail, st.n_indef_backtrack, iters_total, substeps_total, cuts_total);
   printf("t_assemble = %.2f\nt_factor = %.2f\nt_solve = %.2f\nwall = %.2f\ncpu = %.2f\n",
          st.t_assemble, st.t_factor, st.t_solve, wall, cpu);
   printf("ref_factor_wall = %.4f (%d + %d factorisations: %.4f before, %.4f after)\n", tref, nf0,

@@ -8,25 +8,33 @@ with the observed order p fitted at each pressure (any ratios between the meshes
 with every mesh's relative error against the extrapolated angle.
 
   refine.py FEM_RAMP [--meshes 6,4,3] [--from DIR] [solver keys...]
-Mesh entries are h in mm with h_band = h_ring = h/2. --from DIR reads DIR/<h>.out of earlier
-runs instead of running. Each run's full output is kept in DIR (default refine_out)."""
+Mesh entries are h in mm with h_band = h_ring = h/2, or h:h_band:h_ring in mm (e.g.
+2:2:2,1.5:1.5:1.5,1:1:1); the Richardson fit uses the first size h of the three last meshes,
+so list a family refined in one ratio of all three sizes. --from DIR reads DIR/<h>_<hb>_<hr>.out
+(or DIR/<h>.out for the h/2 family) of earlier runs instead of running. Each run's full output
+is kept in DIR (default refine_out)."""
 import math, os, subprocess, sys
 
 args = sys.argv[1:]
 exe = args.pop(0)
-meshes, outdir, keys = [6.0, 4.0, 3.0], "refine_out", []
+meshes, outdir, keys = [(6.0, 3.0, 3.0), (4.0, 2.0, 2.0), (3.0, 1.5, 1.5)], "refine_out", []
 reuse = False
 while args:
     a = args.pop(0)
-    if a == "--meshes": meshes = [float(x) for x in args.pop(0).split(",")]
+    if a == "--meshes": meshes = [tuple(float(y) for y in x.split(":")) if ":" in x else
+                                  (float(x), 0.5 * float(x), 0.5 * float(x))
+                                  for x in args.pop(0).split(",")]
     elif a == "--from": outdir = args.pop(0); reuse = True
     else: keys.append(a)
 os.makedirs(outdir, exist_ok=True)
 res = {}
-for h in meshes:
-    path = os.path.join(outdir, f"{h:g}.out")
+for m in meshes:
+    h, hb, hr = m
+    path = os.path.join(outdir, f"{h:g}_{hb:g}_{hr:g}.out")
+    if reuse and not os.path.exists(path):
+        path = os.path.join(outdir, f"{h:g}.out")
     if not reuse:
-        cmd = [exe, f"h={h * 1e-3:.6g}", f"hb={h * 0.5e-3:.6g}", f"hr={h * 0.5e-3:.6g}", "n_out=4",
+        cmd = [exe, f"h={h * 1e-3:.6g}", f"hb={hb * 1e-3:.6g}", f"hr={hr * 1e-3:.6g}", "n_out=4",
                "ref=0"] + keys
         with open(path, "w") as f:
             subprocess.run(cmd, stdout=f, stderr=subprocess.DEVNULL, check=False)
@@ -35,11 +43,12 @@ for h in meshes:
         if " = " in line:
             k, v = line.split(" = ", 1)
             kv[k.strip()] = v.split()[0]
-    res[h] = kv
+    res[m] = kv
 P = [30, 60, 90, 120]
 ext, order = {}, {}
-hs = meshes[-3:]
-a = [[float(res[h].get(f"angle_{p}", "nan")) for p in P] for h in hs]
+fam = meshes[-3:]
+hs = [m[0] for m in fam]
+a = [[float(res[m].get(f"angle_{p}", "nan")) for p in P] for m in fam]
 
 
 def fit(a1, a2, a3):
@@ -64,12 +73,12 @@ for j, p in enumerate(P):
 print("| mesh h/h_band/h_ring [mm] | free dofs | " + " | ".join(f"{p} kPa [deg] (err)" for p in P)
       + " | wall [s] | cpu [s] | factorisations |")
 print("|---" * (len(P) + 5) + "|")
-for h in meshes:
-    kv = res[h]
+for m in meshes:
+    kv = res[m]
     cells = []
     for p in P:
         v = float(kv.get(f"angle_{p}", "nan"))
         cells.append(f"{v:.4f} ({100 * (v - ext[p]) / ext[p]:+.2f} %)")
-    print(f"| {h:g}/{h / 2:g}/{h / 2:g} | {kv.get('nfree')} | " + " | ".join(cells) +
+    print(f"| {m[0]:g}/{m[1]:g}/{m[2]:g} | {kv.get('nfree')} | " + " | ".join(cells) +
           f" | {kv.get('wall')} | {kv.get('cpu')} | {kv.get('factorisations')} |")
 print("| Richardson | | " + " | ".join(f"{ext[p]:.4f} (p = {order[p]:.2f})" for p in P) + " | | | |")

@@ -135,6 +135,26 @@ int main(void) {
     fprintf(stderr, "krylov: no PCG direction taken (the test should exercise it)\n");
     fails++;
   }
+  /* 5: the whole ramp in one increment (energy merit, modify, PCG): the energy stall rule
+   * and the step-back when even K_int is indefinite let one substep reach case 2's
+   * equilibrium (unique on this stable path) */
+  prm.dl_init = 1.0;
+  TU_CHECK(build(m, &mat, &prm, 1, &s));
+  TU_CHECK(fem_solver_set_pressure(s, p));
+  TU_CHECK(fem_solver_solve(s));
+  FemSolveReport rep;
+  fem_solver_report(s, &rep);
+  fem_solver_stats(s, &st1);
+  const double *ud = fem_solver_displacements(s);
+  for (int i = 0; i < n; i++) u1[i] = ud[i];
+  fem_solver_destroy(&s);
+  d = rel_diff(u1, u0, n); /* u0: case 2's default path */
+  fails += tu_close("one increment: displacement against the two-increment default path", d, 0.0,
+                    1e-8, 0.0);
+  if (verbose)
+    printf("one increment to p: %d substeps, %d cuts, %d Newton iterations, %d step-backs on an "
+           "indefinite K_int, %d energy backtracks\n", rep.substeps, rep.cuts, rep.newton_iters,
+           st1.n_indef_backtrack, st1.n_ls_energy);
   prm.krylov_max = 0;
 
   /* 3: rim free (V is not the potential): merit switched off, same equilibrium */
