@@ -89,7 +89,8 @@ static int factorize_modified(FemSolver *s, double p_asm, int at_iterate, int st
    * attempt is a factorisation. */
   if (step_back) {
     s->nw.saw_not_pd = 1;
-    s->nw.have_factors = 0;
+    s->nw.have_factors = s->nw.fact_converged = 0; /* lin holds a failed factorisation */
+    s->nw.indef_step = 1;
     return SA_ERR_NOT_SPD;
   }
   double betas[2] = {0.0, 0.0}, cur = 1.0;
@@ -138,9 +139,13 @@ static int factorize(FemSolver *s, const StepKind *sk, double p_asm, int eff_don
     }
   }
   int rc;
+  s->nw.indef_step = 0;
   if (sym && s->prm.indefinite == FEM_INDEFINITE_MODIFY && !sk->dynamic && s->as.npf > 0 &&
       p_asm > 0 && s->ct.control == FEM_CONTROL_LOAD) {
     rc = factorize_modified(s, p_asm, at_iterate, step_back);
+    if (rc > 0 && s->nw.indef_step) /* step back (not a K_int failure: no limit-point flag) */
+      return SA_ERROR(SA_ERR_NOT_SPD, "tangent not positive definite at iteration past the "
+                      "first: step back");
     if (rc == 0) {
       s->st.n_factor++;
       s->st.n_chol++;
@@ -154,7 +159,8 @@ static int factorize(FemSolver *s, const StepKind *sk, double p_asm, int eff_don
      * that need not descend (cheaper: LU costs ~6 Cholesky; measured in
      * docs/fem_time_to_accuracy.md). A limit point is still diagnosed: fail_not_pd is set. */
     s->nw.saw_not_pd = s->ct.fail_not_pd = 1;
-    s->nw.have_factors = 0; /* the factor object holds a failed factorisation */
+    s->nw.have_factors = s->nw.fact_converged = 0; /* lin holds a failed factorisation */
+    s->nw.indef_step = 1;
     return SA_ERROR(SA_ERR_NOT_SPD, "tangent not positive definite even without the load "
                     "stiffness (indefinite = modify): increment too large or limit point");
   }
@@ -243,6 +249,9 @@ typedef struct {
   double r_prev, r_first, merit_prev, step_len, dp, gb, du_norm, qnorm, p_pred;
   int emerit;       /* the energy merit applies to this substep */
   int ls_exhausted; /* the last energy line search found no sufficient decrease */
+  int stepped_back; /* the current direction was stepped back (indefinite tangent) */
+  int since_best;   /* iterations since |R| last fell below half its best since it 1 */
+  double r_best;
   double p_asm;     /* pressure of the load stiffness in the assembled tangent */
   double pi_hist[8]; /* potential at the last accepted iterates (non-monotone line search) */
   int n_hist;
@@ -319,13 +328,35 @@ static FemNewtonReason stop_test(FemSolver *s, Iter *t, double rnorm, double fre
    * a 15 kPa substep of the actuator was declared stalled at |R| 10 -> 8 -> 7.5 -> 5.5 -> 4.8
    * -> 2.8, then cut and redone as two; docs/fem_time_to_accuracy.md). Otherwise: |R| not
    * halved. */
-  if (t->emerit && t->slope < 0.0)
-    t->stall = t->ls_exhausted ? t->stall + 1 : 0;
-  else
-    t->stall = (t->it > 1 && rnorm > 0.5 * t->r_prev) ? t->stall + 1 : 0;
+  /* A retry of the same direction after a step-back is no new iteration for the stall count.
+   * Backstop under the energy merit (past a limit point the potential is unbounded below and
+   * every line search succeeds): |R| not below half its best since iteration 1 in
+   * 4 max_stall iterations (the longest such run on the actuator ramp was 11). */
+  int em = t->emerit && t->slope < 0.0;
+  if (!t->stepped_back) {
+    if (em)
+      t->stall = t->ls_exhausted ? t->stall + 1 : 0;
+    else
+      t->stall = (t->it > 1 && rnorm > 0.5 * t->r_prev) ? t->stall + 1 : 0;
+    if (t->it >= 1 && (t->r_best < 0 || rnorm < 0.5 * t->r_best)) {
+      t->r_best = rnorm;
+      t->since_best = 0;
+    } else if (t->it >= 1) {
+      t->since_best++;
+    }
+  }
   if (t->stall >= s->prm.max_stall) {
-    SA_ERROR(SA_ERR_NOT_CONVERGED, "Newton stalled (|R| %.3e not halved in %d iterations)",
-             rnorm, t->stall);
+    if (em)
+      SA_ERROR(SA_ERR_NOT_CONVERGED, "Newton stalled (no sufficient decrease of the potential "
+               "in %d line searches, |R| %.3e)", t->stall, rnorm);
+    else
+      SA_ERROR(SA_ERR_NOT_CONVERGED, "Newton stalled (|R| %.3e not halved in %d iterations)",
+               rnorm, t->stall);
+    return FEM_DIVERGED_STALLED;
+  }
+  if (em && t->since_best >= 4 * s->prm.max_stall) {
+    SA_ERROR(SA_ERR_NOT_CONVERGED, "Newton stalled (|R| %.3e not below half its best %.3e in "
+             "%d iterations)", rnorm, t->r_best, t->since_best);
     return FEM_DIVERGED_STALLED;
   }
   if (t->it >= 3 && rnorm > 1e6 * t->r_first) {
@@ -417,7 +448,9 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
   t->du_norm = fem_nrm2(s->nw.du, nf);
   t->slope = t->emerit ? fem_dot(s->nw.R, s->nw.du, nf) : 0.0;
   t->pi_prev = t->pi_ref = t->pi;
+  t->stepped_back = 0;
   if (t->emerit) { /* the reference of the non-monotone Armijo test: max over ls_memory iterates */
+    if (t->ls_exhausted) t->n_hist = 0; /* an uphill step taken as it was: restart the memory */
     int mem = s->prm.ls_memory < 1 ? 1 : s->prm.ls_memory > 8 ? 8 : s->prm.ls_memory;
     t->pi_hist[t->n_hist % mem] = t->pi;
     t->n_hist++;
@@ -446,6 +479,7 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
  * why it stopped. */
 int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
   Iter t = {.vol = s->ct.control == FEM_CONTROL_VOLUME, .r_prev = -1, .r_first = -1,
+            .r_best = -1,
             .merit_prev = INFINITY, .step_len = 1.0};
   t.emerit = s->prm.merit == FEM_MERIT_ENERGY && s->prm.line_search && !sk->dynamic && !t.vol &&
              s->as.ncontrib == 0;
@@ -578,14 +612,14 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
       return why > 0 ? 0 : SA_ERR_NOT_CONVERGED;
     }
     rc = direction(s, sk, &t, plan_reuse, rnorm, rate, c, merit, &why);
-    if (rc == SA_ERR_NOT_SPD && s->prm.indefinite == FEM_INDEFINITE_MODIFY && t.it > 0 &&
-        t.ls < 10) {
+    if (rc == SA_ERR_NOT_SPD && s->nw.indef_step && t.it > 0 && t.ls < 10) {
       /* the tangent is indefinite here (the consistent one; K_int too once the line-search
        * budget is spent): the last step carried the iterate too far. Step back toward the
        * last accepted iterate (halve) instead of failing the whole substep and its
        * iterations (docs/fem_time_to_accuracy.md, "Step-back"). */
       sa_error_clear();
       s->st.n_indef_backtrack++;
+      t.stepped_back = 1;
       t.step_len *= 0.5;
       t.ls++;
       for (int d = 0; d < s->ndof; d++)
@@ -594,8 +628,8 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
       fem_set_x(s);
       continue;
     }
-    if (rc == SA_ERR_NOT_SPD && s->prm.indefinite == FEM_INDEFINITE_MODIFY && t.it == 0 &&
-        s->nw.extrapolated && t.ls < 4) {
+    if (rc == SA_ERR_NOT_SPD && s->nw.indef_step && t.it == 0 && s->nw.extrapolated &&
+        t.ls < 4) {
       /* the extrapolated start is too far for even K_int: halve the extrapolation, then u_n */
       sa_error_clear();
       s->st.n_indef_backtrack++;

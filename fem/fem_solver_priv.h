@@ -91,6 +91,8 @@ typedef struct { /* fem_newton.c */
    * the next predictor (FEM_PREDICT_REUSE) */
   int fact_converged;
   int have_factors; /* lin holds factors (cleared when a pattern rebuild recreates it) */
+  int indef_step;   /* the last factorize() found the tangent at this iterate indefinite
+                     * (indefinite = modify): the caller may step back */
   int fact_dynamic;
   double fact_dt, fact_alpha;
   FemNewtonReason reason; /* of the last substep */

@@ -10,7 +10,8 @@
  * factorisations of a 2 kPa solve, before and after the ramp: the tangent is positive definite
  * there) and reports the ramp's wall time in units of it (issue 14's metric).
  *
- *   fem_ramp [key=value ...]   keys: h hb hr (mesh [m]), p_max [Pa], n_out, merit (lazy|energy),
+ *   fem_ramp [key=value ...]   keys: h hb hr (mesh [m]), tg (thin_grow [m], 0: the .geo's),
+ *     p_max [Pa], n_out, merit (lazy|energy),
  *     indefinite (lu|modify), predictor (new_load|equilibrium|reuse), reuse_rate, dl_init,
  *     easy_iter, grow, max_iter, max_stall, ls_memory, rtol, dl_max, krylov_max, krylov_rtol, ref (1: measure the reference factorisation, 0: skip)
  * Output: one line per output step ("step p_kPa angle_deg"), then key = value lines. */
@@ -35,9 +36,11 @@ static double cpu_now(void) {
          1e-6 * ru.ru_stime.tv_usec;
 }
 
-static int make_mesh(double h, double hb, double hr, FemMesh **m, FemMaterial *mats) {
-  FemGeoParam gp[] = {{"h_band", hb}, {"h_ring", hr}};
-  SA_CHECK(fem_mesh_generate(SOFTACT_MESH_DIR "/actuator.geo", 2, gp, h, 2, m));
+/* tg > 0: thin_grow of actuator.geo (the distance over which the band and ring sizes grow
+ * back to h; the .geo's default is h). */
+static int make_mesh(double h, double hb, double hr, double tg, FemMesh **m, FemMaterial *mats) {
+  FemGeoParam gp[] = {{"h_band", hb}, {"h_ring", hr}, {"thin_grow", tg}};
+  SA_CHECK(fem_mesh_generate(SOFTACT_MESH_DIR "/actuator.geo", tg > 0 ? 3 : 2, gp, h, 2, m));
   for (int r = 0; r < (*m)->nregions; r++) {
     if (!strcmp((*m)->region_names[r], "silicone"))
       mats[r] = (FemMaterial){.kind = FEM_MAT_YEOH, .c10 = 0.11e6, .c20 = 0.02e6,
@@ -90,6 +93,7 @@ int main(int argc, char **argv) {
   sa_log_set_level(getenv("FEM_RAMP_DEBUG") ? SA_LOG_DEBUG : SA_LOG_WARN);
   double h = atof(arg(argc, argv, "h", "4e-3")), hb = atof(arg(argc, argv, "hb", "2e-3")),
          hr = atof(arg(argc, argv, "hr", "2e-3")), p_max = atof(arg(argc, argv, "p_max", "120e3"));
+  double tg = atof(arg(argc, argv, "tg", "0"));
   int n_out = atoi(arg(argc, argv, "n_out", "12")), want_ref = atoi(arg(argc, argv, "ref", "1"));
   FemSolverParams prm = fem_solver_params_default();
   prm.merit = !strcmp(arg(argc, argv, "merit", "lazy"), "energy") ? FEM_MERIT_ENERGY
@@ -118,10 +122,10 @@ int main(int argc, char **argv) {
   double tf0 = 0, tf1 = 0, tc0 = 0, tc1 = 0;
   int nf0 = 0, nf1 = 0;
   if (want_ref) {
-    SA_CHECK(make_mesh(4e-3, 2e-3, 2e-3, &m0, mref));
+    SA_CHECK(make_mesh(4e-3, 2e-3, 2e-3, 0.0, &m0, mref));
     if (ref_factor(m0, mref, &tf0, &tc0, &nf0)) goto fail;
   }
-  if (make_mesh(h, hb, hr, &m, mats)) goto fail;
+  if (make_mesh(h, hb, hr, tg, &m, mats)) goto fail;
   FemSolver *s;
   if (make_solver(m, mats, &prm, &s)) goto fail;
   double w0 = sa_time_now(), c0 = cpu_now(), ang[1000] = {0};
@@ -148,6 +152,7 @@ int main(int argc, char **argv) {
   fem_solver_stats(s, &st);
   if (want_ref && ref_factor(m0, mref, &tf1, &tc1, &nf1)) goto fail;
   double tref = want_ref ? 0.5 * (tf0 + tf1) : NAN;
+  printf("thin_grow = %.2f mm\n", 1e3 * tg);
   printf("mesh = %.2f/%.2f/%.2f mm\nnfree = %d\nnelem = %d\ncompleted = %d\n", 1e3 * h, 1e3 * hb,
          1e3 * hr, st.nfree, st.nelem, rc == 0);
   printf("factorisations = %d\ncholesky = %d\nlu = %d\nnot_pd_attempts = %d\nmodified = %d\n"
