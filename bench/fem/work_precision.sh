@@ -1,0 +1,16 @@
+#!/bin/sh
+# The work-precision plot of docs/fem_time_to_accuracy.md from the committed raw outputs
+# (bench/fem/results_rings); the reference angles are the Richardson row of the ring series
+# (h = h_band = 2 mm, h_ring = 2, 1, 0.5 mm) in that document.
+set -eu
+cd "$(dirname "$0")/../.."
+R=bench/fem/results_rings
+A="previous recipe (5592fe2), h then all sizes refined"
+B="new recipe, rings refined at h 2 mm"
+C="new recipe, 4/2/1 ring zone 1 mm"
+python3 bench/fem/work_precision.py --ref 16.9775,37.0262,60.1894,86.9179 \
+  --out docs/img/fem_work_precision --time cpu \
+  "$A:4/2/2=$R/prev_4_2_2.out" "$A:3/2/2=$R/prev_3_2_2.out" "$A:2/2/2=$R/prev_2_2_2.out" \
+  "$A:1.5/1.5/1.5=$R/prev_1.5_1.5_1.5.out" "$A:1.25/1.25/1.25=$R/prev_1.25_1.25_1.25.out" \
+  "$B:4/2/2=$R/new_4_2_2.out" "$B:2/2/1=$R/new_2_2_1.out" "$B:2/2/0.5=$R/new_2_2_0.5.out" \
+  "$C:4/2/1=$R/new_4_2_1_tg1.out"
