@@ -471,6 +471,25 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
   return 0;
 }
 
+/* The trial iterate at step length a along the last direction from the accepted iterate. */
+static void step_to(FemSolver *s, Iter *t, double a) {
+  t->step_len = a;
+  for (int d = 0; d < s->ndof; d++)
+    if (s->dm.eq[d] >= 0) s->u[d] = s->nw.u_it[d] + a * s->nw.du[s->dm.eq[d]];
+  s->p = s->nw.p_it + a * t->dp;
+  fem_set_x(s);
+}
+
+/* The extrapolated start was refused (outside the domain, or too far for K_int): halve the
+ * extrapolation, and at the fourth refusal start from u_n. */
+static void pull_back_extrapolation(FemSolver *s, Iter *t) {
+  t->ls++;
+  double f = t->ls < 4 ? 0.5 : 0.0;
+  for (int d = 0; d < s->ndof; d++)
+    if (s->dm.eq[d] >= 0) s->u[d] = s->u_last[d] + f * (s->u[d] - s->u_last[d]);
+  fem_set_x(s);
+}
+
 /* One substep: Newton from the current u (the predictor is applied by the caller) to
  * equilibrium with the loads already applied. Lazy backtracking: a full step is taken; if the
  * next assembly finds a domain error, a NaN or a larger merit (residual norm, plus the
@@ -550,32 +569,20 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
       if (!decrease && t.ls < 10) {
         double den = 2.0 * (dpi - t.slope * a);
         double an = den > 0.0 ? -t.slope * a * a / den : 0.5 * a;
-        t.step_len = fmin(fmax(an, 0.1 * a), 0.5 * a);
         t.ls++;
         s->st.n_ls_energy++;
-        for (int d = 0; d < s->ndof; d++)
-          if (s->dm.eq[d] >= 0) s->u[d] = s->nw.u_it[d] + t.step_len * s->nw.du[s->dm.eq[d]];
-        fem_set_x(s);
+        step_to(s, &t, fmin(fmax(an, 0.1 * a), 0.5 * a));
         continue;
       }
     }
     if (t.it > 0 && s->prm.line_search && t.ls < (energy_ls ? 10 : 6) &&
         (bad || (!energy_ls && merit > s->prm.ls_growth * t.merit_prev))) {
-      t.step_len *= 0.5;
       t.ls++;
-      for (int d = 0; d < s->ndof; d++)
-        if (s->dm.eq[d] >= 0) s->u[d] = s->nw.u_it[d] + t.step_len * s->nw.du[s->dm.eq[d]];
-      s->p = s->nw.p_it + t.step_len * t.dp;
-      fem_set_x(s);
+      step_to(s, &t, 0.5 * t.step_len);
       continue;
     }
     if (t.it == 0 && bad && s->nw.extrapolated && t.ls < 4) {
-      /* the extrapolated start is outside the domain: halve the extrapolation, then u_n */
-      t.ls++;
-      double f = t.ls < 4 ? 0.5 : 0.0;
-      for (int d = 0; d < s->ndof; d++)
-        if (s->dm.eq[d] >= 0) s->u[d] = s->u_last[d] + f * (s->u[d] - s->u_last[d]);
-      fem_set_x(s);
+      pull_back_extrapolation(s, &t); /* the extrapolated start is outside the domain */
       continue;
     }
     if (bad) {
@@ -620,24 +627,15 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
       sa_error_clear();
       s->st.n_indef_backtrack++;
       t.stepped_back = 1;
-      t.step_len *= 0.5;
       t.ls++;
-      for (int d = 0; d < s->ndof; d++)
-        if (s->dm.eq[d] >= 0) s->u[d] = s->nw.u_it[d] + t.step_len * s->nw.du[s->dm.eq[d]];
-      s->p = s->nw.p_it + t.step_len * t.dp;
-      fem_set_x(s);
+      step_to(s, &t, 0.5 * t.step_len);
       continue;
     }
     if (rc == SA_ERR_NOT_SPD && s->nw.indef_step && t.it == 0 && s->nw.extrapolated &&
         t.ls < 4) {
-      /* the extrapolated start is too far for even K_int: halve the extrapolation, then u_n */
-      sa_error_clear();
+      sa_error_clear(); /* the extrapolated start is too far for even K_int */
       s->st.n_indef_backtrack++;
-      t.ls++;
-      double f = t.ls < 4 ? 0.5 : 0.0;
-      for (int d = 0; d < s->ndof; d++)
-        if (s->dm.eq[d] >= 0) s->u[d] = s->u_last[d] + f * (s->u[d] - s->u_last[d]);
-      fem_set_x(s);
+      pull_back_extrapolation(s, &t);
       continue;
     }
     if (rc) {
