@@ -167,7 +167,7 @@ typedef struct {
   int n_modified;           /* factorisations of a modified (load stiffness reduced) tangent */
   int n_not_pd;             /* CHOLMOD attempts that found a tangent not positive definite */
   int n_ls_energy;          /* backtracks on the energy merit */
-  int n_indef_backtrack;    /* backtracks because even K_int was indefinite (modify) */
+  int n_indef_backtrack;    /* step-backs: the tangent at an iterate was indefinite (modify) */
   int n_krylov;             /* Newton directions from PCG on the last factors */
   int n_krylov_it;          /* PCG iterations (each a product with K and a factor solve) */
   int n_krylov_fail;        /* PCG attempts abandoned (limit, negative curvature) */

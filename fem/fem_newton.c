@@ -243,6 +243,8 @@ static int pcg(FemSolver *s, const double *b, double *x, int maxit, double rtol,
   return 1;
 }
 
+enum { LS_MEMORY_MAX = 8 }; /* largest ls_memory (fem.h) */
+
 /* Iteration state of one substep. */
 typedef struct {
   int vol, it, ls, stall, nfresh, have_fact, fresh_last, reuse, krylov_last;
@@ -253,7 +255,7 @@ typedef struct {
   int since_best;   /* iterations since |R| last fell below half its best since it 1 */
   double r_best;
   double p_asm;     /* pressure of the load stiffness in the assembled tangent */
-  double pi_hist[8]; /* potential at the last accepted iterates (non-monotone line search) */
+  double pi_hist[LS_MEMORY_MAX]; /* potential at the last accepted iterates (non-monotone) */
   int n_hist;
   double pi_ref;     /* reference of the Armijo test: max of pi_hist (Pi(0) when monotone) */
   double pi, pi_prev, pi_scale, slope; /* potential now / at the accepted iterate, its scale,
@@ -327,8 +329,7 @@ static FemNewtonReason stop_test(FemSolver *s, Iter *t, double rnorm, double fre
    * and rises and falls by 10x between iterations that all decrease the potential (measured:
    * a 15 kPa substep of the actuator was declared stalled at |R| 10 -> 8 -> 7.5 -> 5.5 -> 4.8
    * -> 2.8, then cut and redone as two; docs/fem_time_to_accuracy.md). Otherwise: |R| not
-   * halved. */
-  /* A retry of the same direction after a step-back is no new iteration for the stall count.
+   * halved. A retry of the same direction after a step-back is no new iteration here.
    * Backstop under the energy merit (past a limit point the potential is unbounded below and
    * every line search succeeds): |R| not below half its best since iteration 1 in
    * 4 max_stall iterations (the longest such run on the actuator ramp was 11). */
@@ -451,7 +452,9 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
   t->stepped_back = 0;
   if (t->emerit) { /* the reference of the non-monotone Armijo test: max over ls_memory iterates */
     if (t->ls_exhausted) t->n_hist = 0; /* an uphill step taken as it was: restart the memory */
-    int mem = s->prm.ls_memory < 1 ? 1 : s->prm.ls_memory > 8 ? 8 : s->prm.ls_memory;
+    int mem = s->prm.ls_memory < 1               ? 1
+              : s->prm.ls_memory > LS_MEMORY_MAX ? LS_MEMORY_MAX
+                                                 : s->prm.ls_memory;
     t->pi_hist[t->n_hist % mem] = t->pi;
     t->n_hist++;
     int k = t->n_hist < mem ? t->n_hist : mem;

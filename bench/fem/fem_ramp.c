@@ -13,7 +13,8 @@
  *   fem_ramp [key=value ...]   keys: h hb hr (mesh [m]), tg (thin_grow [m], 0: the .geo's),
  *     p_max [Pa], n_out, merit (lazy|energy),
  *     indefinite (lu|modify), predictor (new_load|equilibrium|reuse), reuse_rate, dl_init,
- *     easy_iter, grow, max_iter, max_stall, ls_memory, rtol, dl_max, krylov_max, krylov_rtol, ref (1: measure the reference factorisation, 0: skip)
+ *     easy_iter, grow, max_iter, max_stall, ls_memory, rtol, dl_max, krylov_max, krylov_rtol,
+ *     ref (1: measure the reference factorisation, 0: skip)
  * Output: one line per output step ("step p_kPa angle_deg"), then key = value lines. */
 #include <math.h>
 #include <stdio.h>

@@ -9,8 +9,8 @@ with every mesh's relative error against the extrapolated angle.
 
   refine.py FEM_RAMP [--meshes 6,4,3] [--from DIR] [solver keys...]
 Mesh entries are h in mm with h_band = h_ring = h/2, or h:h_band:h_ring in mm (e.g.
-2:2:2,1.5:1.5:1.5,1:1:1); the Richardson fit uses the first size h of the three last meshes,
-so list a family refined in one ratio of all three sizes. --from DIR reads DIR/<h>_<hb>_<hr>.out
+2:2:2,1.5:1.5:1.5,1:1:1, or the ring series 2:2:2,2:2:1,2:2:0.5); the Richardson fit of the
+three last meshes uses the size that varies most among them. --from DIR reads DIR/<h>_<hb>_<hr>.out
 (or DIR/<h>.out for the h/2 family) of earlier runs instead of running. Each run's full output
 is kept in DIR (default refine_out)."""
 import math, os, subprocess, sys
@@ -47,7 +47,9 @@ for m in meshes:
 P = [30, 60, 90, 120]
 ext, order = {}, {}
 fam = meshes[-3:]
-hs = [m[0] for m in fam]
+# the Richardson size: the component (h, h_band or h_ring) that varies most over the family
+k = max(range(3), key=lambda c: max(m[c] for m in fam) / min(m[c] for m in fam))
+hs = [m[k] for m in fam]
 a = [[float(res[m].get(f"angle_{p}", "nan")) for p in P] for m in fam]
 
 

@@ -12,7 +12,7 @@ issue's measure) and, as a second column, the largest relative error over the fo
 Writes BASE.md (table) and BASE.png (log-log error against wall time, one curve per SERIES,
 points labelled with LABEL, the 1 % line dashed). --time cpu plots the process CPU time instead
 of the wall time (fairer when the runs shared the machine with other jobs)."""
-import subprocess, sys
+import os, subprocess, sys, tempfile
 
 P = [30, 60, 90, 120]
 
@@ -63,8 +63,9 @@ def main():
          "set format y '%g'", "set key top right", "set grid", "set yrange [0.005:0.3]",
          "set title 'FEM pressure ramp with rings: error against run time'"]
     plots = []
+    tmp = tempfile.mkdtemp(prefix="work_precision.")
     for i, sname in enumerate(series_names):
-        dat = f"{base}_{i}.dat"
+        dat = os.path.join(tmp, f"series_{i}.dat")
         with open(dat, "w") as f:
             for series, label, kv, a120, e120, emax in rows:
                 if series == sname:
@@ -73,7 +74,12 @@ def main():
         plots.append(f"'{dat}' using 1:2:3 with labels offset 1,0.7 font ',9' notitle")
     plots.append("0.01 with lines dt 2 lc rgb 'gray40' title '1 %'")
     g.append("plot " + ", ".join(plots))
-    subprocess.run(["gnuplot"], input="\n".join(g) + "\n", text=True, check=True)
+    try:
+        subprocess.run(["gnuplot"], input="\n".join(g) + "\n", text=True, check=True)
+    finally:
+        for f in os.listdir(tmp):
+            os.remove(os.path.join(tmp, f))
+        os.rmdir(tmp)
 
 
 if __name__ == "__main__":
