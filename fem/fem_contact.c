@@ -45,6 +45,13 @@ struct FemContact {
   int *last_tri; /* mesh: triangle found at the last evaluation (tie-breaking) */
   double *anc_b;  /* mesh: its barycentric coordinates (3 per slave) */
   double *vn;     /* mesh, smooth_normals: unit vertex normals of the master (3 per mesh node) */
+  double *lam;    /* augmented Lagrangian: normal pressure multiplier per slave [Pa] (>= 0;
+                   * 0 = pure penalty) at the state being evaluated */
+  double *anc_m, *anc_bm; /* anchors at fem_contact_mark (anc, anc_b) */
+  int *anc_fm;             /* and anc_f */
+  double *lam_c, *lam_t; /* committed / target multipliers: fem_contact_augment sets the target,
+                          * the next solve ramps from one to the other with its load factor (so
+                          * a cut substep takes a smaller part of the change) */
   /* committed read-back */
   double *gap_c, *tn_c, *tt_c, *nrm_c;
   FemContactStats st;
@@ -135,6 +142,12 @@ int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactP
   SA_CALLOC(c->tn_c, c->ns);
   SA_CALLOC(c->tt_c, 3 * c->ns);
   SA_CALLOC(c->nrm_c, 3 * c->ns);
+  SA_CALLOC(c->lam, c->ns);
+  SA_CALLOC(c->lam_c, c->ns);
+  SA_CALLOC(c->anc_m, 3 * c->ns);
+  SA_CALLOC(c->anc_bm, 3 * c->ns);
+  SA_CALLOC(c->anc_fm, c->ns);
+  SA_CALLOC(c->lam_t, c->ns);
   for (int k = 0; k < c->ns; k++) {
     c->anc_f[k] = -1;
     memcpy(c->anc + 3 * k, mesh->xyz + 3 * c->snode[k], 3 * sizeof(double));
@@ -219,13 +232,15 @@ int fem_contact_set_cylinder(FemContact *c, const double p[3], const double a[3]
 
 /* ------------------------------------------------------------------ the law at one node */
 
-/* Returns 1 when in contact (g < 0 or frozen), 0 otherwise. Inputs: g, n, N (NULL = 0), x,
- * anchor a, area A; slip_in: -1 decide, 0/1 frozen (finite differences). Outputs: F force of
- * the target on the node, dF = dF/dx (NULL: not wanted), tn, tt (traction), *slip. */
-static int node_law(const FemContactParams *p, double A, double g, const double n[3],
+/* Returns 1 when in contact (t_N = lam - eps_N g >= 0, or frozen), 0 otherwise. Inputs: g, n,
+ * N (NULL = 0), x, anchor a, area A, the node's multiplier lam (0: pure penalty, in contact
+ * when g <= 0); slip_in: -1 decide, 0/1 frozen (finite differences). Outputs: F force of the
+ * target on the node, dF = dF/dx (NULL: not wanted), tn, tt (traction), *slip. */
+static int node_law(const FemContactParams *p, double A, double g, double lam, const double n[3],
                     const double *N, const double x[3], const double a[3], int frozen, int slip_in,
                     double F[3], double *dF, double *tn_out, double tt[3], int *slip) {
-  if (g > 0 && !frozen) { /* g = 0 is active: touching bodies get the contact stiffness */
+  /* g = 0 with lam = 0 is active (t_N = -0): touching bodies get the contact stiffness */
+  if (lam - p->penalty * g < 0 && !frozen) {
     memset(F, 0, 3 * sizeof *F);
     if (dF) memset(dF, 0, 9 * sizeof *dF);
     if (tt) memset(tt, 0, 3 * sizeof *tt);
@@ -234,7 +249,7 @@ static int node_law(const FemContactParams *p, double A, double g, const double 
     return 0;
   }
   double eN = p->penalty, eT = p->penalty_tangent, mu = p->friction;
-  double tn = -eN * g, w[3], d[3], t[3];
+  double tn = lam - eN * g, w[3], d[3], t[3];
   for (int i = 0; i < 3; i++) w[i] = x[i] - a[i];
   double s = dot3(n, w);
   for (int i = 0; i < 3; i++) d[i] = w[i] - s * n[i];
@@ -434,7 +449,7 @@ static int mesh_pair(const FemContact *c, int k, const double *xs, const double 
   g = dot3(w, n);
   /* smooth normals: the slip is the motion of the closest point on the master (the gap vector
    * xs - xc is along the facet normal, not along n, so x - a would carry a spurious slip) */
-  int act = node_law(&c->prm, c->sarea[k], g, n, NULL, vn3 ? xc : xs, a, frozen, slip_in, Fs,
+  int act = node_law(&c->prm, c->sarea[k], g, c->lam[k], n, NULL, vn3 ? xc : xs, a, frozen, slip_in, Fs,
                      NULL, tn, tt, slip);
   for (int j = 0; j < 3; j++)
     for (int i = 0; i < 3; i++) Fm[3 * j + i] = -bc[j] * Fs[i];
@@ -510,12 +525,18 @@ static void vertex_normals(FemContact *c, const double *x) {
     }
 }
 
+/* Multipliers at load factor f of the solve: from the committed to the target ones. */
+static void multipliers_at(FemContact *c, double f) {
+  for (int k = 0; k < c->ns; k++) c->lam[k] = c->lam_c[k] + f * (c->lam_t[k] - c->lam_c[k]);
+}
+
 static int contact_eval(void *ctx, FemAsmView *v) {
   FemContact *c = ctx;
   const double *x = fem_asm_positions(v);
   if (c->target == TGT_MESH) vertex_normals(c, x);
   int wantK = fem_asm_wants_tangent(v);
   if (c->target == TGT_PLANE) plane_at(c, fem_asm_load_factor(v));
+  multipliers_at(c, fem_asm_load_factor(v));
   for (int k = 0; k < c->ns; k++) {
     int A = c->snode[k];
     const double *xs = x + 3 * A;
@@ -524,7 +545,7 @@ static int contact_eval(void *ctx, FemAsmView *v) {
     int slip;
     if (c->target == TGT_PLANE || c->target == TGT_CYLINDER) {
       if (!rigid_geom(c, xs, &g, n, N)) continue;
-      if (!node_law(&c->prm, c->sarea[k], g, n, N, xs, c->anc + 3 * k, 0,
+      if (!node_law(&c->prm, c->sarea[k], g, c->lam[k], n, N, xs, c->anc + 3 * k, 0,
                     -1, F, wantK ? dF : NULL, &tn, NULL, &slip))
         continue;
       if (c->prm.max_penetration > 0 && -g > c->prm.max_penetration) {
@@ -604,6 +625,11 @@ static void contact_commit(void *ctx, const double *x) {
     /* a completed ramp makes the target the committed position */
     if (lam >= 1.0 - 1e-12) memcpy(c->pp_c, c->pp_t, sizeof c->pp_c);
   }
+  {
+    double f = c->s ? fem_solver_load_factor(c->s) : 0.0;
+    multipliers_at(c, f);
+    if (f >= 1.0 - 1e-12) memcpy(c->lam_c, c->lam_t, sizeof(double) * (size_t)c->ns);
+  }
   FemContactStats st = {0};
   double tsum[3] = {0, 0, 0};
   for (int k = 0; k < c->ns; k++) {
@@ -613,7 +639,7 @@ static void contact_commit(void *ctx, const double *x) {
     int slip = 0, act = 0;
     if (c->target == TGT_PLANE || c->target == TGT_CYLINDER) {
       if (rigid_geom(c, xs, &g, n, N)) {
-        act = node_law(&c->prm, c->sarea[k], g, n, N, xs, c->anc + 3 * k, 0,
+        act = node_law(&c->prm, c->sarea[k], g, c->lam[k], n, N, xs, c->anc + 3 * k, 0,
                        -1, F, NULL, &tn, tt, &slip);
         for (int i = 0; i < 3; i++) c->anc[3 * k + i] = xs[i] - g * n[i] + tt[i] / c->prm.penalty_tangent;
       } else {
@@ -717,6 +743,44 @@ int fem_contact_set_friction(FemContact *c, double mu) {
 
 void fem_contact_stats(const FemContact *c, FemContactStats *st) { *st = c->st; }
 
+/* Uzawa update at the committed state: lam <- <lam - eps_N g>, i.e. the multiplier becomes the
+ * pressure the node carried (t_N), so the next solve needs no penetration to carry it. It is
+ * the next solve's target; that solve ramps to it. */
+int fem_contact_augment(FemContact *c, double *max_penetration, double *overlap_volume) {
+  double pen = 0, vol = 0;
+  for (int k = 0; k < c->ns; k++) {
+    double g = c->gap_c[k];
+    if (g < 0) {
+      pen = fmax(pen, -g);
+      vol += c->sarea[k] * -g;
+    }
+    /* an unevaluated node (outside a rigid target, no master face) has g = +inf: lam = 0 */
+    c->lam_t[k] = fmax(0.0, c->lam_c[k] - c->prm.penalty * g);
+  }
+  if (max_penetration) *max_penetration = pen;
+  if (overlap_volume) *overlap_volume = vol;
+  return 0;
+}
+
+void fem_contact_mark(FemContact *c) {
+  memcpy(c->anc_m, c->anc, sizeof(double) * 3 * (size_t)c->ns);
+  memcpy(c->anc_bm, c->anc_b, sizeof(double) * 3 * (size_t)c->ns);
+  memcpy(c->anc_fm, c->anc_f, sizeof(int) * (size_t)c->ns);
+}
+
+void fem_contact_restore_mark(FemContact *c) {
+  memcpy(c->anc, c->anc_m, sizeof(double) * 3 * (size_t)c->ns);
+  memcpy(c->anc_b, c->anc_bm, sizeof(double) * 3 * (size_t)c->ns);
+  memcpy(c->anc_f, c->anc_fm, sizeof(int) * (size_t)c->ns);
+}
+
+void fem_contact_reset_multipliers(FemContact *c) {
+  size_t n = sizeof(double) * (size_t)c->ns;
+  memset(c->lam, 0, n);
+  memset(c->lam_c, 0, n);
+  memset(c->lam_t, 0, n);
+}
+
 int fem_contact_slaves(const FemContact *c, const int **node, const double **area,
                        const double **gap, const double **tn, const double **tt,
                        const double **normal) {
@@ -733,7 +797,8 @@ void fem_contact_destroy(FemContact **cp) {
   if (!cp || !*cp) return;
   FemContact *c = *cp;
   void *p[] = {c->last_tri, c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
-               c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->vn};
+               c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->vn, c->lam,
+               c->lam_c, c->lam_t, c->anc_m, c->anc_bm, c->anc_fm};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
   free(c);
   *cp = NULL;

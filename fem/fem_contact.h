@@ -92,6 +92,31 @@ typedef struct {
   double tangent_force;   /* |sum of A t_T| [N] */
 } FemContactStats;
 
+/* Augmented Lagrangian (Uzawa; Wriggers 2006 sec. 6.3, Laursen 2002 sec. 5.3): each slave
+ * node carries a normal pressure multiplier lam >= 0 and t_N = <lam - eps_N g>. After a
+ * converged solve, fem_contact_augment sets lam to the pressure each node carried at the
+ * committed state; solving again at the same loads then needs less penetration to carry it,
+ * and repeating drives the gaps to zero with a penalty that only sets the rate (the error
+ * contracts by about K / (K + eps_N) per update, K the structure's stiffness per area), not the
+ * answer. Returns the largest penetration [m] and the overlap volume sum A <-g> [m^3] of the
+ * committed state BEFORE the update (the caller's stopping test). The tangential law stays a
+ * penalty regularised stick (its elastic slip t_T / eps_T), its Coulomb limit mu t_N uses the
+ * augmented t_N. The update is the next solve's target: that solve moves the multipliers from
+ * the committed values to it with its load factor (like a moving plane), so the solver's
+ * substep cuts take a smaller part of a large change; a completed solve commits them.
+ * Multipliers start at 0 (pure penalty) and are not part of the solver's snapshot: call
+ * between solves only. */
+int fem_contact_augment(FemContact *c, double *max_penetration, double *overlap_volume);
+/* With friction the solves of an augmentation loop must not each commit a slip: slip is
+ * irreversible, so a first solve with the penalty's penetration would leave the nodes where it
+ * slid them and the answer would depend on the penalty. fem_contact_mark keeps the stick
+ * anchors at the start of a load step; fem_contact_restore_mark before each augmented solve
+ * puts them back, so the step's friction is one backward-Euler increment from the mark to the
+ * final state, whatever the number of updates. */
+void fem_contact_mark(FemContact *c);
+void fem_contact_restore_mark(FemContact *c);
+void fem_contact_reset_multipliers(FemContact *c);
+
 /* At the last accepted step (zeros before the first). */
 void fem_contact_stats(const FemContact *c, FemContactStats *st);
 /* Per slave node (committed): nslave [out]; node, area, gap, pressure t_N, traction t_T [3],

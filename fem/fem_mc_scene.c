@@ -72,8 +72,8 @@
 typedef struct {
   char fill_geo[SA_STR_MAX], wall_surface[SA_STR_MAX], fixed_surface[SA_STR_MAX];
   char tip_surface[SA_STR_MAX];
-  double fill_h, fill_height, barrel_length, stroke, penalty, penalty_tangent;
-  int n_steps, max_cuts, vtk_every, gravity, smooth_normals;
+  double fill_h, fill_height, barrel_length, stroke, penalty, penalty_tangent, augment_tol;
+  int n_steps, max_cuts, vtk_every, gravity, smooth_normals, augment;
 } McParams;
 
 #define P(f) offsetof(McParams, f)
@@ -98,6 +98,14 @@ static const SaParam mc_params[] = {
      "the stroke converges; 1: stalls before 0.5 mm on the 3 mm mesh; docs/mohr_coulomb.md)"},
     {"penalty_tangent", SA_PARAM_REAL, P(penalty_tangent), "-", "1", 0, 1e3, SA_MIN_OPEN, NULL,
      "tangential penalty eps_T / eps_N"},
+    {"augment", SA_PARAM_INT, P(augment), "-", "0", 0, 1000, 0, NULL,
+     "augmented Lagrangian: most Uzawa updates of the normal contact pressures per stroke step "
+     "(each one more solve at the same piston position), so the answer does not depend on the "
+     "penalty; 0 = pure penalty (the contact layers then take part of the displaced volume)"},
+    {"augment_tol", SA_PARAM_REAL, P(augment_tol), "-", "0.005", 0, 1, SA_MIN_OPEN, NULL,
+     "augmented Lagrangian: a step is done when the penalty overlap volume of all contacts is "
+     "below this fraction of the displaced volume (bore area x piston displacement, at least "
+     "one step's: the settled bed is augmented before the stroke)"},
     {"smooth_normals", SA_PARAM_BOOL, P(smooth_normals), "-", "1", 0, 0, 0, NULL,
      "cavity contact: interpolated vertex normals of the faceted wall (0: facet normals, whose "
      "jumps at the facet edges stall Newton in this scene)"},
@@ -339,7 +347,7 @@ typedef struct {
   double *sigma, *vm, *epsp, *yield, *reg;
   double V_fill0, V_cav0, V_ov0, z_p0, weight_fill, angle0, angle, d, force, epsp_max;
   double K_ratio, K_sh, K_sv, balance_f, balance_v;
-  int newton, cuts, nyield;
+  int newton, cuts, nyield, augments, augment_unconverged;
   double t_start;
 } Mc;
 
@@ -596,6 +604,48 @@ static void accumulate(Mc *o) {
   o->cuts += rep.cuts;
 }
 
+/* Augmented Lagrangian at the piston position reached: Uzawa updates of every contact's
+ * multipliers, each followed by a solve at the same loads (the plane's committed point is its
+ * target after a completed ramp, so it stays), until the overlap volume is below augment_tol of
+ * the displaced volume. The last update is kept for the next step (a warm start). */
+static int augment_step(Mc *o) {
+  const McParams *P = &o->sc->mc;
+  if (P->augment <= 0) return 0;
+  /* at least one step's displaced volume: the settled bed (d = 0) is augmented too */
+  double Vd = M_PI * R_BORE * R_BORE * fmax(o->d, P->stroke / P->n_steps), vol = 0, pen = 0;
+  for (int it = 0;; it++) {
+    vol = pen = 0;
+    for (int k = 0; k < NC; k++) {
+      double p, v;
+      SA_CHECK(fem_contact_augment(o->c[k], &p, &v));
+      vol += v;
+      pen = fmax(pen, p);
+    }
+    sa_log(SA_LOG_DEBUG, "mc", "augmentation %d at %.4g mm: overlap %.3g mm^3 (%.3g of the "
+           "displaced volume), largest penetration %.3g um", it, 1e3 * o->d, vol * 1e9,
+           vol / Vd, pen * 1e6);
+    if (vol <= P->augment_tol * Vd) return 0;
+    if (it == P->augment) break;
+    for (int k = 0; k < NC; k++) fem_contact_restore_mark(o->c[k]);
+    int rc = fem_solver_solve(o->s);
+    accumulate(o);
+    o->augments++;
+    if (rc < 0) return sa_error_push(rc, __func__, __FILE__, __LINE__);
+    if (rc > 0) { /* recoverable: the last converged state stays, the next step goes on */
+      sa_error_clear();
+      o->augment_unconverged++;
+      sa_log(SA_LOG_WARN, "mc", "solve after augmentation %d at %.4g mm failed; the state of "
+             "the last converged solve is kept", it + 1, 1e3 * o->d);
+      return 0;
+    }
+  }
+  o->augment_unconverged++;
+  sa_log(SA_LOG_WARN, "mc", "augmented Lagrangian at %.4g mm: overlap still %.3g of the displaced "
+         "volume after %d updates (augment_tol %.3g)", 1e3 * o->d, vol / Vd, P->augment,
+         P->augment_tol);
+  return 0;
+}
+
 /* Stages 1 and 2: gravity with frictionless walls, then friction on. */
 static int geostatic(Mc *o) {
   const McScene *sc = o->sc;
@@ -608,6 +658,9 @@ static int geostatic(Mc *o) {
       sa_log(SA_LOG_ERROR, "mc", "geostatic stage failed");
       return sa_error_push(rc, __func__, __FILE__, __LINE__);
     }
+    /* frictionless, the settled state is unique: augmented here it does not depend on the
+     * penalty (with friction on, the nodes stick where the penalty left them) */
+    SA_CHECK(augment_step(o));
     SA_CHECK(lateral_ratio(o));
     double nu = sc->fill.poisson, phi = sc->fill.friction_angle * M_PI / 180;
     sa_log(SA_LOG_INFO, "mc", "geostatic stage: %.2f s, %d Newton iterations; fill lateral "
@@ -617,6 +670,7 @@ static int geostatic(Mc *o) {
   }
   SA_CHECK(fem_contact_set_friction(o->c[C_WALL], sc->fill.friction_wall));
   SA_CHECK(fem_contact_set_friction(o->c[C_BARREL], sc->fill.friction_piston));
+  for (int k = 0; k < NC; k++) fem_contact_mark(o->c[k]);
   /* without the geostatic stage nothing is loaded: the reference state needs no solve (the
    * solve would only chase the nm start-in-contact overlap at round-off force levels) */
   if (!sc->mc.gravity) return 0;
@@ -626,7 +680,7 @@ static int geostatic(Mc *o) {
     sa_log(SA_LOG_ERROR, "mc", "switching the wall friction on failed");
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
-  return 0;
+  return augment_step(o);
 }
 
 /* Stage 3: the stroke. Returns 0 when the stroke is complete, > 0 (recoverable code) when it
@@ -647,6 +701,7 @@ static int stroke(Mc *o, double *d_reached) {
     if (sa_interrupted()) return SA_ERROR(SA_ERR_INTERRUPTED, "interrupted at %.4g mm", 1e3 * o->d);
     double dt = fmin(dd, P->stroke - o->d);
     SA_CHECK(fem_contact_move_plane(o->c[C_PISTON], (const double[3]){0, 0, o->z_p0 - o->d - dt}));
+    for (int k = 0; k < NC; k++) fem_contact_mark(o->c[k]);
     int rc = fem_solver_solve(o->s);
     FemSolveReport rep;
     fem_solver_report(o->s, &rep);
@@ -671,6 +726,7 @@ static int stroke(Mc *o, double *d_reached) {
     }
     o->d += dt;
     step++;
+    SA_CHECK(augment_step(o));
     SA_CHECK(output_row(o));
     int last = o->d >= P->stroke * (1 - 1e-12);
     if ((P->vtk_every > 0 && step % P->vtk_every == 0) || last) SA_CHECK(write_vtk(o, step));
@@ -747,6 +803,9 @@ static int mc_run(void *scene, SaRun *run) {
       fprintf(fp, "newton_iterations = %d\nnewton_iterations_geostatic = %d\ncuts = %d\n"
               "geostatic_s = %.3f\nstroke_s = %.3f\n", o.newton, newton_geo, o.cuts, t_geo,
               t_stroke);
+      fprintf(fp, "augment_max = %d ; Uzawa updates allowed per step (0 = pure penalty)\n"
+              "augment_solves = %d\naugment_unconverged_steps = %d\n", sc->mc.augment,
+              o.augments, o.augment_unconverged);
       fprintf(fp, "assemblies = %d\nassemble_s = %.3f\nfactorisations = %d\ncholesky = %d\n"
               "lu = %d\nfactorise_s = %.3f\nsolves = %d\nsolve_s = %.3f\npattern_rebuilds = %d\n"
               "wall_s = %.3f\nstatus = %s\n", st.n_assemble, st.t_assemble, st.n_factor,
