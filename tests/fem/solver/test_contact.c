@@ -225,18 +225,22 @@ static int sliding(int on_block, int order) {
   return fail;
 }
 
-static int cylinder(void) {
-  int fail = 0;
-  const double R = 6e-3, H = 1e-2, ez = -1e-4;
+/* The cylinder of 3 (radius R, height H) in its frictionless rigid wall with penalty eps,
+ * compressed axially by eps_z = ez and solved once. */
+static const double CYL_R = 6e-3, CYL_H = 1e-2, CYL_EZ = -1e-4;
+static int cylinder_solved(double eps, FemMesh **mo, FemSolver **so, FemContact *c[4]) {
+  const double R = CYL_R, H = CYL_H;
   double cc[3] = {R, H, 0};
   SmeshBlock b = {{8, 8, 4}, cu_map_cyl, cc, {"s0", "s1", "s2", "s3", "bottom", "top"}};
   FemMesh *m;
   TU_CHECK(smesh_build(1, &b, 1, 1e-12, &m));
+  *mo = m;
   FemMaterial mat = fem_material_from_e_nu(E, NU, 1000);
   FemSolverParams prm = fem_solver_params_default();
   prm.rtol = 1e-10;
   FemSolver *s;
   TU_CHECK(fem_solver_create(m, &mat, &prm, &s));
+  *so = s;
   TU_CHECK(fem_solver_fix_surface(s, "bottom", FEM_Z));
   TU_CHECK(fem_solver_fix_surface(s, "top", FEM_Z));
   /* in-plane rigid motions: the centre line (x = y = 0 nodes) fixed in x, y; the +x radius
@@ -246,11 +250,9 @@ static int cylinder(void) {
     if (fabs(X[0]) < 1e-9 && fabs(X[1]) < 1e-9) TU_CHECK(fem_solver_fix_nodes(s, 1, &A2, FEM_X | FEM_Y));
     else if (fabs(X[1]) < 1e-9 && X[0] > 0) TU_CHECK(fem_solver_fix_nodes(s, 1, &A2, FEM_Y));
   }
-  double h = R / 4, eps = 10 * E / h;
   FemContactParams cp = fem_contact_params_default();
   cp.penalty = eps;
   const char *sides[4] = {"s0", "s1", "s2", "s3"};
-  FemContact *c[4];
   for (int k = 0; k < 4; k++) {
     TU_CHECK(fem_contact_create(m, sides[k], &cp, &c[k]));
     TU_CHECK(fem_contact_set_cylinder(c[k], (double[3]){0, 0, 0}, (double[3]){0, 0, 1}, R, -1, 1));
@@ -258,8 +260,19 @@ static int cylinder(void) {
   }
   TU_CHECK(fem_solver_setup(s));
   const FemSurface *top = fem_mesh_find_surface(m, "top");
-  TU_CHECK(fem_solver_set_prescribed(s, top->nnodes, top->nodes, 2, ez * H));
+  TU_CHECK(fem_solver_set_prescribed(s, top->nnodes, top->nodes, 2, CYL_EZ * H));
   TU_CHECK(fem_solver_solve(s));
+  return 0;
+}
+
+static int cylinder(void) {
+  int fail = 0;
+  const double R = CYL_R, H = CYL_H, ez = CYL_EZ;
+  double h = R / 4, eps = 10 * E / h;
+  FemMesh *m = NULL;
+  FemSolver *s = NULL;
+  FemContact *c[4] = {NULL, NULL, NULL, NULL};
+  TU_CHECK(cylinder_solved(eps, &m, &s, c));
   double lam = E * NU / ((1 + NU) * (1 - 2 * NU)), G = E / (2 * (1 + NU));
   double e = -lam * ez / (2 * lam + 2 * G + eps * R), pw = eps * R * e;
   double Fn = 0;
@@ -384,37 +397,12 @@ static int too_deep(void) {
 
 static int cylinder_augmented(void) {
   int fail = 0;
-  const double R = 6e-3, H = 1e-2, ez = -1e-4;
-  double cc[3] = {R, H, 0};
-  SmeshBlock b = {{8, 8, 4}, cu_map_cyl, cc, {"s0", "s1", "s2", "s3", "bottom", "top"}};
-  FemMesh *m;
-  TU_CHECK(smesh_build(1, &b, 1, 1e-12, &m));
-  FemMaterial mat = fem_material_from_e_nu(E, NU, 1000);
-  FemSolverParams prm = fem_solver_params_default();
-  prm.rtol = 1e-10;
-  FemSolver *s;
-  TU_CHECK(fem_solver_create(m, &mat, &prm, &s));
-  TU_CHECK(fem_solver_fix_surface(s, "bottom", FEM_Z));
-  TU_CHECK(fem_solver_fix_surface(s, "top", FEM_Z));
-  for (int A2 = 0; A2 < m->nnodes; A2++) {
-    const double *X = m->xyz + 3 * A2;
-    if (fabs(X[0]) < 1e-9 && fabs(X[1]) < 1e-9) TU_CHECK(fem_solver_fix_nodes(s, 1, &A2, FEM_X | FEM_Y));
-    else if (fabs(X[1]) < 1e-9 && X[0] > 0) TU_CHECK(fem_solver_fix_nodes(s, 1, &A2, FEM_Y));
-  }
+  const double R = CYL_R, H = CYL_H, ez = CYL_EZ;
   double eps = 2 * E / R;
-  FemContactParams cp = fem_contact_params_default();
-  cp.penalty = eps;
-  const char *sides[4] = {"s0", "s1", "s2", "s3"};
-  FemContact *c[4];
-  for (int k = 0; k < 4; k++) {
-    TU_CHECK(fem_contact_create(m, sides[k], &cp, &c[k]));
-    TU_CHECK(fem_contact_set_cylinder(c[k], (double[3]){0, 0, 0}, (double[3]){0, 0, 1}, R, -1, 1));
-    TU_CHECK(fem_contact_attach(c[k], s));
-  }
-  TU_CHECK(fem_solver_setup(s));
-  const FemSurface *top = fem_mesh_find_surface(m, "top");
-  TU_CHECK(fem_solver_set_prescribed(s, top->nnodes, top->nodes, 2, ez * H));
-  TU_CHECK(fem_solver_solve(s));
+  FemMesh *m = NULL;
+  FemSolver *s = NULL;
+  FemContact *c[4] = {NULL, NULL, NULL, NULL};
+  TU_CHECK(cylinder_solved(eps, &m, &s, c));
   double lam = E * NU / ((1 + NU) * (1 - 2 * NU)), G = E / (2 * (1 + NU));
   double F_rigid = -lam * ez * 2 * M_PI * R * H;
   double pen0 = 0, pen = 0, rate = 0, Fn = 0;
