@@ -348,6 +348,7 @@ typedef struct {
   double V_fill0, V_cav0, V_ov0, z_p0, weight_fill, angle0, angle, d, force, epsp_max;
   double K_ratio, K_sh, K_sv, balance_f, balance_v;
   int newton, cuts, nyield, augments, augment_unconverged;
+  FemSnapshot *snap; /* the state before an augmented solve */
   double t_start;
 } Mc;
 
@@ -626,16 +627,25 @@ static int augment_step(Mc *o) {
            vol / Vd, pen * 1e6);
     if (vol <= P->augment_tol * Vd) return 0;
     if (it == P->augment) break;
+    /* a failed update must leave the last converged state, multipliers and anchors */
+    SA_CHECK(fem_solver_snapshot(o->s, &o->snap));
     for (int k = 0; k < NC; k++) fem_contact_restore_mark(o->c[k]);
     int rc = fem_solver_solve(o->s);
     accumulate(o);
     o->augments++;
     if (rc < 0) return sa_error_push(rc, __func__, __FILE__, __LINE__);
-    if (rc > 0) { /* recoverable: the last converged state stays, the next step goes on */
+    if (rc > 0) { /* recoverable: back to the last converged solve, the next step goes on */
       sa_error_clear();
+      SA_CHECK(fem_solver_rollback(o->s, o->snap));
+      for (int k = 0; k < NC; k++) {
+        fem_contact_cancel_augment(o->c[k]);
+        fem_contact_restore_mark(o->c[k]);
+        SA_CHECK(fem_contact_refresh(o->c[k]));
+      }
       o->augment_unconverged++;
-      sa_log(SA_LOG_WARN, "mc", "solve after augmentation %d at %.4g mm failed; the state of "
-             "the last converged solve is kept", it + 1, 1e3 * o->d);
+      sa_log(SA_LOG_WARN, "mc", "solve after augmentation %d at %.4g mm failed; back to the "
+             "last converged state (overlap %.3g of the displaced volume)", it + 1, 1e3 * o->d,
+             vol / Vd);
       return 0;
     }
   }
@@ -822,6 +832,7 @@ static int mc_run(void *scene, SaRun *run) {
            st.n_factor, st.n_lu, st.t_factor);
   }
   if (o.csv) sa_csv_abort(&o.csv);
+  fem_snapshot_destroy(&o.snap);
   fem_solver_destroy(&o.s);
   for (int k = 0; k < NC; k++) fem_contact_destroy(&o.c[k]);
   free(o.cell_types);
