@@ -32,7 +32,10 @@ run bed rigid coupling.scheme=rigid
 run bed interval_0.5mm coupling.interval=5e-4
 # the first steps' small load with the shorter averaging window (docs/dem.md: 11.4 % of 0.17 N)
 run bed interval_0.125mm coupling.interval=1.25e-4 dem.balance_tol=0.25
-run bed dt_0.1 dem.dt_fraction=0.1
+# a checkpoint refuses another DEM step, so the finer step has its own pour (same seed; the
+# bed then differs by the chaotic pour as well: read it against the second pour's noise)
+pour bed_dt01 dem.dt_fraction=0.1
+run bed_dt01 dt_0.1 dem.dt_fraction=0.1
 run bed speed_0.01 piston.speed=0.01
 run bed speed_0.04 piston.speed=0.04
 # the issue's extreme case "a piston ten times faster" (the staggered scheme stopped it on the
