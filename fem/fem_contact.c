@@ -768,12 +768,6 @@ void fem_contact_cancel_augment(FemContact *c) {
   memcpy(c->lam, c->lam_c, n);
 }
 
-int fem_contact_refresh(FemContact *c) {
-  SA_REQUIRE(c->s, SA_ERR_INPUT, "contact '%s' is not attached", c->slave);
-  contact_commit(c, fem_solver_positions(c->s));
-  return 0;
-}
-
 void fem_contact_mark(FemContact *c) {
   memcpy(c->anc_m, c->anc, sizeof(double) * 3 * (size_t)c->ns);
   memcpy(c->anc_bm, c->anc_b, sizeof(double) * 3 * (size_t)c->ns);

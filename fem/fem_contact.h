@@ -119,9 +119,6 @@ void fem_contact_reset_multipliers(FemContact *c);
 /* Drop the pending update (target = committed multipliers): after a failed solve that the
  * caller rolled back (fem_solver_rollback). */
 void fem_contact_cancel_augment(FemContact *c);
-/* Commit the contact state (anchors, read-back, stats) at the solver's current positions: after
- * a fem_solver_rollback, whose failed solve had committed its substeps. */
-int fem_contact_refresh(FemContact *c);
 
 /* At the last accepted step (zeros before the first). */
 void fem_contact_stats(const FemContact *c, FemContactStats *st);

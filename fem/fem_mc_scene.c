@@ -640,9 +640,14 @@ static int augment_step(Mc *o) {
       for (int k = 0; k < NC; k++) {
         fem_contact_cancel_augment(o->c[k]);
         fem_contact_restore_mark(o->c[k]);
-        SA_CHECK(fem_contact_refresh(o->c[k]));
       }
+      /* the failed solve committed its substeps into the contacts: solve once more at the
+       * last multipliers from the restored state, so state, contact read-back and anchors are
+       * one equilibrium again (the restored state is one, up to the friction path: ~1 step) */
+      rc = fem_solver_solve(o->s);
+      accumulate(o);
       o->augment_unconverged++;
+      if (rc) return sa_error_push(rc, __func__, __FILE__, __LINE__);
       sa_log(SA_LOG_WARN, "mc", "solve after augmentation %d at %.4g mm failed; back to the "
              "last converged state (overlap %.3g of the displaced volume)", it + 1, 1e3 * o->d,
              vol / Vd);
