@@ -49,6 +49,11 @@ struct FemContact {
                    * 0 = pure penalty) at the state being evaluated */
   double *anc_m, *anc_bm; /* anchors at fem_contact_mark (anc, anc_b) */
   int *anc_fm;             /* and anc_f */
+  double *sv;    /* fem_contact_save: anc, anc_b, gap_c, tn_c, tt_c, nrm_c, lam_c (3+3+1+1+3+3+1
+                  * per slave) */
+  int *sv_f;      /* and anc_f */
+  FemContactStats sv_st;
+  double sv_pp[3];
   double *lam_c, *lam_t; /* committed / target multipliers: fem_contact_augment sets the target,
                           * the next solve ramps from one to the other with its load factor (so
                           * a cut substep takes a smaller part of the change) */
@@ -762,6 +767,46 @@ int fem_contact_augment(FemContact *c, double *max_penetration, double *overlap_
   return 0;
 }
 
+enum { SV_PER = 15 };
+static void sv_copy(FemContact *c, int save) {
+  double *arr[] = {c->anc, c->anc_b, c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->lam_c};
+  int w[] = {3, 3, 1, 1, 3, 3, 1};
+  double *p = c->sv;
+  for (int a = 0; a < 7; a++) {
+    size_t n = sizeof(double) * (size_t)w[a] * (size_t)c->ns;
+    if (save) memcpy(p, arr[a], n);
+    else memcpy(arr[a], p, n);
+    p += (size_t)w[a] * (size_t)c->ns;
+  }
+  if (save) {
+    memcpy(c->sv_f, c->anc_f, sizeof(int) * (size_t)c->ns);
+    c->sv_st = c->st;
+    memcpy(c->sv_pp, c->pp_c, sizeof c->sv_pp);
+  } else {
+    memcpy(c->anc_f, c->sv_f, sizeof(int) * (size_t)c->ns);
+    c->st = c->sv_st;
+    memcpy(c->pp_c, c->sv_pp, sizeof c->sv_pp);
+    memcpy(c->lam_t, c->lam_c, sizeof(double) * (size_t)c->ns);
+    memcpy(c->lam, c->lam_c, sizeof(double) * (size_t)c->ns);
+  }
+}
+
+int fem_contact_save(FemContact *c) {
+  if (!c->sv) {
+    c->sv = malloc(sizeof(double) * SV_PER * (size_t)c->ns);
+    c->sv_f = malloc(sizeof(int) * (size_t)c->ns);
+    SA_REQUIRE(c->sv && c->sv_f, SA_ERR_MEMORY, "contact '%s': saved state", c->slave);
+  }
+  sv_copy(c, 1);
+  return 0;
+}
+
+int fem_contact_restore(FemContact *c) {
+  SA_REQUIRE(c->sv, SA_ERR_INPUT, "contact '%s': fem_contact_restore without a save", c->slave);
+  sv_copy(c, 0);
+  return 0;
+}
+
 void fem_contact_cancel_augment(FemContact *c) {
   size_t n = sizeof(double) * (size_t)c->ns;
   memcpy(c->lam_t, c->lam_c, n);
@@ -804,7 +849,7 @@ void fem_contact_destroy(FemContact **cp) {
   FemContact *c = *cp;
   void *p[] = {c->last_tri, c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
                c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->vn, c->lam,
-               c->lam_c, c->lam_t, c->anc_m, c->anc_bm, c->anc_fm};
+               c->lam_c, c->lam_t, c->anc_m, c->anc_bm, c->anc_fm, c->sv, c->sv_f};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
   free(c);
   *cp = NULL;

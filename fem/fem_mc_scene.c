@@ -629,6 +629,7 @@ static int augment_step(Mc *o) {
     if (it == P->augment) break;
     /* a failed update must leave the last converged state, multipliers and anchors */
     SA_CHECK(fem_solver_snapshot(o->s, &o->snap));
+    for (int k = 0; k < NC; k++) SA_CHECK(fem_contact_save(o->c[k]));
     for (int k = 0; k < NC; k++) fem_contact_restore_mark(o->c[k]);
     int rc = fem_solver_solve(o->s);
     accumulate(o);
@@ -637,17 +638,8 @@ static int augment_step(Mc *o) {
     if (rc > 0) { /* recoverable: back to the last converged solve, the next step goes on */
       sa_error_clear();
       SA_CHECK(fem_solver_rollback(o->s, o->snap));
-      for (int k = 0; k < NC; k++) {
-        fem_contact_cancel_augment(o->c[k]);
-        fem_contact_restore_mark(o->c[k]);
-      }
-      /* the failed solve committed its substeps into the contacts: solve once more at the
-       * last multipliers from the restored state, so state, contact read-back and anchors are
-       * one equilibrium again (the restored state is one, up to the friction path: ~1 step) */
-      rc = fem_solver_solve(o->s);
-      accumulate(o);
+      for (int k = 0; k < NC; k++) SA_CHECK(fem_contact_restore(o->c[k]));
       o->augment_unconverged++;
-      if (rc) return sa_error_push(rc, __func__, __FILE__, __LINE__);
       sa_log(SA_LOG_WARN, "mc", "solve after augmentation %d at %.4g mm failed; back to the "
              "last converged state (overlap %.3g of the displaced volume)", it + 1, 1e3 * o->d,
              vol / Vd);
