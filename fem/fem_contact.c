@@ -767,27 +767,42 @@ int fem_contact_augment(FemContact *c, double *max_penetration, double *overlap_
   return 0;
 }
 
-enum { SV_PER = 15 };
+/* A pending multiplier update dropped: target and current = committed. */
+static void cancel_augment(FemContact *c) {
+  size_t n = sizeof(double) * (size_t)c->ns;
+  memcpy(c->lam_t, c->lam_c, n);
+  memcpy(c->lam, c->lam_c, n);
+}
+
+/* The stick anchors (anc, anc_b, anc_f) of one set of arrays into another. */
+static void copy_anchors(const FemContact *c, double *anc, double *anc_b, int *anc_f,
+                         const double *from_anc, const double *from_b, const int *from_f) {
+  memcpy(anc, from_anc, sizeof(double) * 3 * (size_t)c->ns);
+  memcpy(anc_b, from_b, sizeof(double) * 3 * (size_t)c->ns);
+  memcpy(anc_f, from_f, sizeof(int) * (size_t)c->ns);
+}
+
+/* The saved state: anchors, then the read-back gap_c, tn_c, tt_c, nrm_c and lam_c. */
+enum { SV_PER = 3 + 3 + 1 + 1 + 3 + 3 + 1 };
 static void sv_copy(FemContact *c, int save) {
-  double *arr[] = {c->anc, c->anc_b, c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->lam_c};
-  int w[] = {3, 3, 1, 1, 3, 3, 1};
-  double *p = c->sv;
-  for (int a = 0; a < 7; a++) {
+  double *arr[] = {c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->lam_c};
+  int w[] = {1, 1, 3, 3, 1};
+  double *sb = c->sv + 3 * (size_t)c->ns, *p = c->sv + 6 * (size_t)c->ns;
+  if (save) copy_anchors(c, c->sv, sb, c->sv_f, c->anc, c->anc_b, c->anc_f);
+  else copy_anchors(c, c->anc, c->anc_b, c->anc_f, c->sv, sb, c->sv_f);
+  for (int a = 0; a < 5; a++) {
     size_t n = sizeof(double) * (size_t)w[a] * (size_t)c->ns;
     if (save) memcpy(p, arr[a], n);
     else memcpy(arr[a], p, n);
     p += (size_t)w[a] * (size_t)c->ns;
   }
   if (save) {
-    memcpy(c->sv_f, c->anc_f, sizeof(int) * (size_t)c->ns);
     c->sv_st = c->st;
     memcpy(c->sv_pp, c->pp_c, sizeof c->sv_pp);
   } else {
-    memcpy(c->anc_f, c->sv_f, sizeof(int) * (size_t)c->ns);
     c->st = c->sv_st;
     memcpy(c->pp_c, c->sv_pp, sizeof c->sv_pp);
-    memcpy(c->lam_t, c->lam_c, sizeof(double) * (size_t)c->ns);
-    memcpy(c->lam, c->lam_c, sizeof(double) * (size_t)c->ns);
+    cancel_augment(c);
   }
 }
 
@@ -807,29 +822,12 @@ int fem_contact_restore(FemContact *c) {
   return 0;
 }
 
-void fem_contact_cancel_augment(FemContact *c) {
-  size_t n = sizeof(double) * (size_t)c->ns;
-  memcpy(c->lam_t, c->lam_c, n);
-  memcpy(c->lam, c->lam_c, n);
-}
-
 void fem_contact_mark(FemContact *c) {
-  memcpy(c->anc_m, c->anc, sizeof(double) * 3 * (size_t)c->ns);
-  memcpy(c->anc_bm, c->anc_b, sizeof(double) * 3 * (size_t)c->ns);
-  memcpy(c->anc_fm, c->anc_f, sizeof(int) * (size_t)c->ns);
+  copy_anchors(c, c->anc_m, c->anc_bm, c->anc_fm, c->anc, c->anc_b, c->anc_f);
 }
 
 void fem_contact_restore_mark(FemContact *c) {
-  memcpy(c->anc, c->anc_m, sizeof(double) * 3 * (size_t)c->ns);
-  memcpy(c->anc_b, c->anc_bm, sizeof(double) * 3 * (size_t)c->ns);
-  memcpy(c->anc_f, c->anc_fm, sizeof(int) * (size_t)c->ns);
-}
-
-void fem_contact_reset_multipliers(FemContact *c) {
-  size_t n = sizeof(double) * (size_t)c->ns;
-  memset(c->lam, 0, n);
-  memset(c->lam_c, 0, n);
-  memset(c->lam_t, 0, n);
+  copy_anchors(c, c->anc, c->anc_b, c->anc_f, c->anc_m, c->anc_bm, c->anc_fm);
 }
 
 int fem_contact_slaves(const FemContact *c, const int **node, const double **area,

@@ -115,9 +115,6 @@ int fem_contact_augment(FemContact *c, double *max_penetration, double *overlap_
  * final state, whatever the number of updates. */
 void fem_contact_mark(FemContact *c);
 void fem_contact_restore_mark(FemContact *c);
-void fem_contact_reset_multipliers(FemContact *c);
-/* Drop the pending update (target = committed multipliers). */
-void fem_contact_cancel_augment(FemContact *c);
 /* The committed contact state (anchors, multipliers, read-back, stats, plane) in memory, to go
  * with fem_solver_snapshot / fem_solver_rollback: a failed solve commits its substeps into the
  * contact, so rolling back the solver alone would leave the contact at a state the solver no
