@@ -38,6 +38,10 @@
 #define R_BORE 6e-3 /* cavity and barrel radius of meshes/actuator.geo */
 #define G_ACC 9.81
 #define N_PRELOAD 5 /* coupling steps with the piston at rest before the stroke */
+#define Z_FLOOR (-80e-3) /* cavity floor of meshes/actuator.geo */
+/* insertion packing of the pour column (random sequential insertion saturated there at 0.298
+ * for 2 mm and 0.266 for 3 mm beads) */
+#define POUR_PACKING 0.25
 
 enum { M_WALL = 0, M_BARREL = 1, M_PISTON = 2, N_MESH = 3 };
 
@@ -257,6 +261,14 @@ static void piston_vertices(int nth, double r, double z, double *xyz) {
 
 /* ------------------------------------------------------------------ DEM side */
 
+/* Top of a pour column that holds the whole pour (dem_scene_pour_count: the same on a resume,
+ * whose barrel must be the checkpoint's) at POUR_PACKING above the cavity floor. */
+static double pour_column_top(const DemGrainCase *gr) {
+  double d = gr->diameter, r_in = R_BORE - 0.55 * d, v_grain = M_PI * pow(d, 3) / 6;
+  return Z_FLOOR + 0.6 * d + dem_scene_pour_count(gr) * v_grain / (POUR_PACKING * M_PI * r_in * r_in) +
+         1.2 * d;
+}
+
 /* resume [in]: checkpoint path to continue from (NULL: a new bed is poured); xw_wall,
  * z_piston: the wall nodes and piston height LIGGGHTS held at the checkpoint. */
 static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z_piston,
@@ -279,10 +291,12 @@ static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z
       .skin = sc->dem.skin * g->d, .seed = sc->dem.seed};
   /* the pour column: the bed volume at a loose 0.3 packing above the barrel top */
   if (!resume) g->n_grains = (int)dem_scene_pour_count(gr); /* <= DEM_MAX_GRAINS (dem_check) */
-  /* the pour column above the barrel: a grain column of height h takes sqrt(2 h / g) to fall,
-   * so fewer, taller rounds pour faster (the time per grain falls as 1 / sqrt(h)); 160 mm
-   * holds ~80 % of the 2 mm bed at the insertion packing below */
-  g->z_top = sc->piston.barrel_length + 0.16;
+  /* the pour column: a grain column of height h takes sqrt(2 h / g) to fall, so one tall round
+   * pours faster than several short ones (two rounds of 160 mm: ~0.54 s of fall for the 2 mm
+   * bed; one of ~290 mm: ~0.2 s, inserted moving at pour_speed). The column holds the whole
+   * bed at POUR_PACKING (random sequential insertion reached 0.298 of the 0.3 asked); at least
+   * 160 mm above the barrel top so that the barrel always has room for the piston */
+  g->z_top = fmax(sc->piston.barrel_length + 0.16, pour_column_top(gr));
   /* room for the actuator bending toward -x and up (tip ~84 mm from the clamp) */
   double lo[3] = {-0.12, -0.04, -0.14}, hi[3] = {0.04, 0.04, g->z_top + 4 * g->d};
   memcpy(p.box_lo, lo, sizeof lo);
@@ -385,11 +399,11 @@ static int dem_advance(Run *g, double t) {
 /* Pour in rounds into the column above the bed, settle, cut the bed at fill_height. */
 static int pour(Run *g) {
   const DemScene *sc = g->sc;
-  double r_in = R_BORE - 0.55 * g->d, bed_top = -80e-3, v_rms, z_max;
+  double r_in = R_BORE - 0.55 * g->d, bed_top = Z_FLOOR, v_rms, z_max;
   int left = g->n_grains, rounds = 0;
   while (left > 0) {
     SA_REQUIRE(!sa_interrupted(), SA_ERR_INTERRUPTED, "interrupted while pouring");
-    double z_lo = fmax(bed_top + g->d, -80e-3 + 0.6 * g->d), z_hi = g->z_top - 0.6 * g->d;
+    double z_lo = fmax(bed_top + g->d, Z_FLOOR + 0.6 * g->d), z_hi = g->z_top - 0.6 * g->d;
     SA_REQUIRE(z_hi - z_lo > 2 * g->d, SA_ERR_DOMAIN, "the pour column is full after %d rounds "
                "with %d grains left: the bore cannot take %d grains of %g mm (lower "
                "[grains] packing_guess)", rounds, left, g->n_grains, g->d * 1e3);
@@ -398,10 +412,24 @@ static int pour(Run *g) {
     int n = left < (int)cap ? left : (int)cap, got = 0;
     SA_CHECK(dem_bridge_insert_cylinder(g->b, 0, 0, r_in, z_lo, z_hi, n, &got));
     SA_REQUIRE(got > 0, SA_ERR_DOMAIN, "no grain could be inserted in round %d", rounds + 1);
+    /* the new grains (IDs after the n_grains - left inserted before) start moving down */
+    double v0 = sc->dem.pour_speed;
+    if (v0 > 0) {
+      char cmd[160];
+      int id0 = g->n_grains - left;
+      snprintf(cmd, sizeof cmd, "group dem_new id <> %d %d", id0 + 1, id0 + got);
+      SA_CHECK(dem_bridge_command(g->b, cmd));
+      snprintf(cmd, sizeof cmd, "velocity dem_new set 0 0 %.9g units box", -v0);
+      SA_CHECK(dem_bridge_command(g->b, cmd));
+      SA_CHECK(dem_bridge_command(g->b, "group dem_new delete"));
+    }
     left -= got;
     rounds++;
-    /* let them fall: the free-fall time over the column plus settling */
-    SA_CHECK(dem_advance(g, sqrt(2 * (z_hi - bed_top) / G_ACC) + 0.05));
+    /* let them fall: the time for the column top to reach the bed (the last round's top lands
+     * near fill_height) at g from v0, plus settling; the settling loop below waits for the rest */
+    double land = left == 0 ? fmax(bed_top, sc->grains.fill_height - 2 * g->d) : bed_top;
+    double fall = (sqrt(v0 * v0 + 2 * G_ACC * (z_hi - land)) - v0) / G_ACC;
+    SA_CHECK(dem_advance(g, fall + 0.05));
     SA_CHECK(grain_stats(g, &v_rms, &z_max));
     bed_top = z_max - 2 * g->d; /* grains still bouncing on top: stay conservative */
     sa_log(SA_LOG_INFO, "dem", "pour round %d: %d grains inserted, %d left, bed top %.1f mm",
@@ -618,7 +646,10 @@ static int fem_step(Run *g, double T) {
   fem_solver_report(g->s, &rep);
   g->newton = rep.newton_iters;
   if (rc) {
-    sa_log(SA_LOG_ERROR, "dem", "FEM solve failed: %s", rep.reason);
+    /* an interrupted solve is no failure: the run keeps its last step (exit 3) */
+    if (rc != SA_ERR_INTERRUPTED)
+      sa_log(SA_LOG_ERROR, "dem", "FEM solve failed: %s",
+             rep.reason[0] ? rep.reason : sa_error_message());
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
   }
   fem_coupling_surface_gather(g->cs, fem_solver_positions(g->s), g->xw_cur);

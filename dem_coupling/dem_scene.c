@@ -120,6 +120,9 @@ static const SaParam dem_params[] = {
      "softening while pouring and settling (never stiffer than [grains] softening: 1 = pour at "
      "the working stiffness). Off by default: a softer pour locks its overlaps into the "
      "confined bed, and the stiffer contacts then press the wall ~10x harder (docs/dem.md)"},
+    {"pour_speed", SA_PARAM_REAL, P(pour_speed), "m/s", "1", 0, 5, 0, NULL,
+     "downward speed the grains are inserted with (a hopper's outflow): the column reaches the "
+     "bed sooner than from rest; the impact speed is sqrt(pour_speed^2 + 2 g h) either way"},
     {"skin", SA_PARAM_REAL, P(skin), "-", "0.2", 0.01, 2, 0, NULL,
      "neighbour skin as a fraction of the bead diameter"},
     {"settle_speed", SA_PARAM_REAL, P(settle_speed), "m/s", "2e-3", 0, INFINITY, SA_MIN_OPEN,

@@ -223,6 +223,10 @@ int fem_solver_set_element_data(FemSolver *s, int ndata, const double *data);
  * q at q * nhist; e.g. the equivalent plastic strain of a plastic law), nhist [out]; NULL
  * before setup. */
 const double *fem_solver_history(const FemSolver *s, int e, int *nhist);
+/* An initial state of element e: its history (committed and trial) becomes hist [in], laid out
+ * as fem_solver_history returns it (e.g. a K0 stress of the Mohr-Coulomb fill, fem_fill.h).
+ * After setup and before a solve; SA_ERR_INPUT when e is out of range or has no history. */
+int fem_solver_set_history(FemSolver *s, int e, const double *hist);
 
 /* Bodies (connected parts of the model, contributors' pairs included) with no fixed dof and
  * no ground spring, found in setup (a WARN names them; a singular tangent then says so). */

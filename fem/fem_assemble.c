@@ -438,3 +438,19 @@ const double *fem_solver_history(const FemSolver *s, int e, int *nhist) {
   if (nhist) *nhist = mt->nhist;
   return s->as.hist_c + s->as.hoff[e];
 }
+
+int fem_solver_set_history(FemSolver *s, int e, const double *hist) {
+  SA_REQUIRE(s && s->setup_done, SA_ERR_INPUT, "fem_solver_set_history before fem_solver_setup");
+  SA_REQUIRE(e >= 0 && e < s->m->nelem && hist, SA_ERR_INPUT, "fem_solver_set_history: element "
+             "%d of %d", e, s->m->nelem);
+  size_t o = (size_t)s->as.hoff[e], n = (size_t)(s->as.hoff[e + 1] - s->as.hoff[e]);
+  SA_REQUIRE(n > 0, SA_ERR_INPUT, "fem_solver_set_history: element %d's material has no history",
+             e);
+  for (size_t k = 0; k < n; k++)
+    SA_REQUIRE(isfinite(hist[k]), SA_ERR_INPUT, "fem_solver_set_history: element %d, value %zu "
+               "is not finite", e, k);
+  memcpy(s->as.hist_c + o, hist, n * sizeof *hist);
+  memcpy(s->as.hist_t + o, hist, n * sizeof *hist);
+  memcpy(s->as.rb.hist + o, hist, n * sizeof *hist);
+  return 0;
+}

@@ -38,6 +38,23 @@ int fem_fill_material(const FemFillParams *p, FemMaterial *mat);
  * nelem values (e.g. k = 6: equivalent plastic strain). */
 void fem_fill_history_mean(const FemSolver *s, int k, double *out);
 
+/* The settled (geostatic) stress of the fill, region `region` of s [in/out], at the current
+ * positions (a K0 procedure: the stress is replaced, the shape kept): at each element's current
+ * centroid, depth = z_surface - z (zero above the surface), vertical Cauchy stress
+ * sv = -density g depth, lateral k0 sv (z up; k0 = 0: Jaky's 1 - sin phi), written as the
+ * Mohr-Coulomb history at the element's F (fem_mc_hist_init_at) at every quadrature point, so
+ * the field is piecewise constant per element. Before any solve (F = I) for tet4 and tet10;
+ * in a deformed state tet4 only (a tet10's F varies over it). A k0 outside the Rankine range
+ * (the state outside the yield surface) is SA_ERR_INPUT naming the allowed range. The solver
+ * then has to balance it (a solve at the same loads). n_set [out, may be NULL]: elements given
+ * a nonzero stress. */
+int fem_fill_k0_stress(FemSolver *s, int region, const FemFillParams *p, double z_surface,
+                       double k0, double g, int *n_set);
+/* Jaky's K0 = 1 - sin phi and the Rankine active / passive ratios of cohesionless soil,
+ * (1 -+ sin phi) / (1 +- sin phi), for friction angle phi_deg [deg]. */
+double fem_fill_k0_jaky(double phi_deg);
+void fem_fill_rankine(double phi_deg, double *k_active, double *k_passive);
+
 extern const SaModule fem_triaxial_module; /* trigger [triaxial] */
 extern const SaModule fem_footing_module;  /* trigger [footing] */
 extern const SaModule fem_mc_bending_module; /* trigger [mc_bending] (extends [mesh]) */

@@ -425,6 +425,22 @@ int fem_mc_hist_init(const FemMohrCoulomb *p, const double tau0[6], double hist[
   return 0;
 }
 
+int fem_mc_hist_init_at(const FemMohrCoulomb *p, const double F[9], const double tau0[6],
+                        double hist[FEM_MC_NHIST])
+{
+  double eps_p = hist[6]; /* the equivalent plastic strain so far stays */
+  SA_CHECK(fem_mc_hist_init(p, tau0, hist));
+  double Fi[9], B[9], T1[9], C[9];
+  double J = fem_kt_inv(F, Fi);
+  SA_REQUIRE(J > 0 && isfinite(J), SA_ERR_INPUT, "mohr_coulomb: initial stress at det F = %g", J);
+  mc_voigt_to_mat(hist, B); /* b_e of tau0 */
+  mc_mm(Fi, 0, B, 0, T1);
+  mc_mm(T1, 0, Fi, 1, C); /* C_p^-1 = F^-1 b_e F^-T, so that F C_p^-1 F^T = b_e */
+  mc_mat_to_voigt(C, hist);
+  hist[6] = eps_p;
+  return 0;
+}
+
 /* ------------------------------------------------------------------ the law object (fem_law.h)
  * Parameters in case-file units: young [Pa], poisson [-], friction_angle [deg], cohesion [Pa],
  * dilation_angle [deg]. Kind FULL (the kernel returns the whole P, pressure included), history

@@ -89,6 +89,11 @@ int fem_mc_eval(const FemMohrCoulomb *p, const double F[9], const double *hist_n
  * admissible (f <= 0 up to 1e-12 relative), else SA_ERR_INPUT. Geostatic K0 state with vertical
  * axis z and vertical stress sv < 0: tau0 = {K0 sv, K0 sv, sv, 0, 0, 0}, K0 = 1 - sin(phi). */
 int fem_mc_hist_init(const FemMohrCoulomb *p, const double tau0[6], double hist[FEM_MC_NHIST]);
+/* The same at deformation gradient F [in] (row-major, det F > 0): the point carries the
+ * Kirchhoff stress tau0 at F (C_p^-1 = F^-1 b_e F^-T); hist [in/out] keeps its equivalent plastic
+ * strain hist[6]. The stress of a settled state replaced in place (a K0 procedure). */
+int fem_mc_hist_init_at(const FemMohrCoulomb *p, const double F[9], const double tau0[6],
+                        double hist[FEM_MC_NHIST]);
 
 /* The kernel as a law object (fem_law.h), found by fem_law_find("mohr_coulomb"): parameters
  * young [Pa], poisson [-], friction_angle [deg], cohesion [Pa], dilation_angle [deg]; kind
