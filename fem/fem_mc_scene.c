@@ -116,8 +116,8 @@ static const SaParam mc_params[] = {
      "the fill's settled stress: none = what the geostatic stage gives the stress-free fill "
      "(its lateral ratio set by the elasticity and the walls), k0 = a K0 procedure after it: "
      "the fill's stress replaced where it stands by vertical rho g depth and lateral k0_ratio "
-     "times it, then balanced at the same loads (needs gravity and a tet4 fill; in the "
-     "actuator the balance returns to the wall-set ratio, docs/mohr_coulomb.md)"},
+     "times it, then balanced at the same loads (needs gravity and a tet4 fill; how much of "
+     "it the balance keeps depends on the contact penalty, docs/mohr_coulomb.md)"},
     {"k0_ratio", SA_PARAM_REAL, P(k0_ratio), "-", "0", 0, 10, 0, NULL,
      "lateral stress ratio of initial_stress = k0 (0 = Jaky's 1 - sin(friction_angle); must lie "
      "in the Rankine range, active (1 - sin)/(1 + sin) to passive (1 + sin)/(1 - sin))"},

@@ -8,7 +8,7 @@
 set -eu
 OUT=$1
 S=${2:-2.5e-3}
-V="d2:grains.diameter=2e-3,piston.stroke=$S d3:grains.diameter=3e-3,piston.stroke=$S"
-[ "${WITH_1MM:-0}" = 1 ] && V="d1:grains.diameter=1e-3,piston.stroke=$S $V"
+V="2mm_beads:grains.diameter=2e-3,piston.stroke=$S 3mm_beads:grains.diameter=3e-3,piston.stroke=$S"
+[ "${WITH_1MM:-0}" = 1 ] && V="1mm_beads:grains.diameter=1e-3,piston.stroke=$S $V"
 # shellcheck disable=SC2086
-python3 "$(dirname "$0")/study.py" "$OUT" $V --marks 0,0.5,1,1.5,2,2.5
+python3 "$(dirname "$0")/study.py" "$OUT" $V --marks 0,0.5,1,1.5,2,2.5 --relative

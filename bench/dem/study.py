@@ -3,13 +3,14 @@
 collect their bending curves into one table and one plot.
 
   bench/dem/study.py OUTDIR LABEL:key=value,key=value [LABEL:...] [--case CASE] [--exe EXE]
-                     [--collect-only] [--marks 0,5,10,15,20,25]
+                     [--collect-only] [--marks 0,5,10,15,20,25] [--relative]
 
 Each variant runs `softact run CASE --out OUTDIR/LABEL --set key=value ...` unless
 OUTDIR/LABEL/summary.ini already exists (a study can be interrupted and continued; a stopped
 run counts: its summary says how far it got). Writes OUTDIR/study.md (a Markdown table: status,
 stroke reached, angle and piston force at every 5 mm, timing split) and OUTDIR/angle.png,
-OUTDIR/force.png (every variant on one plot, gnuplot). Runs are sequential: on a 2-core machine
+OUTDIR/force.png (every variant on one plot, gnuplot; --relative plots the bend from each bed's
+rest angle, angle - angle(0), for beds that rest at different angles). Runs are sequential: on a 2-core machine
 parallel runs only distort each other's timings."""
 import os, subprocess, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -31,6 +32,9 @@ def main():
     marks = [0, 5, 10, 15, 20, 25]
     if "--marks" in args:
         i = args.index("--marks"); marks = [float(x) for x in args[i + 1].split(",")]; del args[i:i + 2]
+    relative = "--relative" in args
+    if relative:
+        args.remove("--relative")
     if "--collect-only" in args:
         args.remove("--collect-only"); collect = True
     if len(args) < 2:
@@ -77,7 +81,14 @@ def main():
         body = ["set terminal pngcairo size 900,600", f"set output '{outdir}/{name}.png'",
                 "set datafile separator ','", "set grid", "set key top left",
                 "set xlabel 'piston displacement [mm]'", f"set ylabel '{ylabel}'"]
-        body.append("plot " + ", ".join(f"'{p}' skip 2 using ($1*1e3):{col} with lines lw 2 "
+        def y(p):
+            if col != 2 or not relative:
+                return f"{col}"
+            a0 = read_curve(p)[0]["bending_angle"]
+            return f"(${col}-{a0:.9g})"
+        if relative and col == 2:
+            body[-1] = "set ylabel 'bend from the rest angle [deg]'"
+        body.append("plot " + ", ".join(f"'{p}' skip 2 using ($1*1e3):{y(p)} with linespoints lw 2 "
                                         f"title '{l}'" for p, l in plots))
         if plots:
             subprocess.run(["gnuplot"], input="\n".join(body) + "\n", text=True)
