@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fem.h"
+#include "fem_contact.h"
 #include "fem_mesh.h"
 #include "smesh.h"
 
@@ -100,6 +102,29 @@ static inline void cu_traction(const FemMesh *m, const FemSurface *S, const doub
       for (int j = 0; j < 3; j++) f[3 * lo + j] += area / 3 * t[j];
     }
   }
+}
+
+/* A fill column of a cu_map_cyl mesh (its sides "s0".."s3") in a rigid tube of radius R around
+ * the z axis: the in-plane rigid motions removed (nodes on the axis fixed in x and y, nodes on
+ * the +x radius in y) and each side in contact (parameters cp) with the tube wall, attached to
+ * s. The four contacts go to wall[]; the caller destroys them. Returns 0 or the failing rc. */
+static inline int cu_tube_setup(const FemMesh *m, FemSolver *s, const FemContactParams *cp,
+                                double R, FemContact *wall[4]) {
+  int rc = 0;
+  for (int A = 0; A < m->nnodes && !rc; A++) {
+    const double *X = m->xyz + 3 * A;
+    if (fabs(X[0]) < 1e-9 && fabs(X[1]) < 1e-9) rc = fem_solver_fix_nodes(s, 1, &A, FEM_X | FEM_Y);
+    else if (fabs(X[1]) < 1e-9 && X[0] > 0) rc = fem_solver_fix_nodes(s, 1, &A, FEM_Y);
+  }
+  const char *sides[4] = {"s0", "s1", "s2", "s3"};
+  for (int k = 0; k < 4; k++) wall[k] = NULL;
+  for (int k = 0; k < 4 && !rc; k++) {
+    rc = fem_contact_create(m, sides[k], cp, &wall[k]);
+    if (!rc)
+      rc = fem_contact_set_cylinder(wall[k], (double[3]){0, 0, 0}, (double[3]){0, 0, 1}, R, -1, 1);
+    if (!rc) rc = fem_contact_attach(wall[k], s);
+  }
+  return rc;
 }
 
 #endif

@@ -70,23 +70,12 @@ static int column(double k0, double *K, double *sv_err, double *K_cf) {
   prm.rtol = 1e-9;
   FemSolver *s;
   TU_CHECK(fem_solver_create(m, &mat, &prm, &s));
-  for (int A = 0; A < m->nnodes; A++) {
-    const double *X = m->xyz + 3 * A;
-    if (fabs(X[0]) < 1e-9 && fabs(X[1]) < 1e-9) TU_CHECK(fem_solver_fix_nodes(s, 1, &A, FEM_X | FEM_Y));
-    else if (fabs(X[1]) < 1e-9 && X[0] > 0) TU_CHECK(fem_solver_fix_nodes(s, 1, &A, FEM_Y));
-  }
   double h = H / 24;
   FemContactParams cp = fem_contact_params_default();
   cp.penalty = 10.0 * E / h;
   cp.friction = 0;
-  const char *sides[4] = {"s0", "s1", "s2", "s3"};
   FemContact *wall[4];
-  for (int k = 0; k < 4; k++) {
-    TU_CHECK(fem_contact_create(m, sides[k], &cp, &wall[k]));
-    TU_CHECK(fem_contact_set_cylinder(wall[k], (double[3]){0, 0, 0}, (double[3]){0, 0, 1}, 0.5 * D,
-                                      -1, 1));
-    TU_CHECK(fem_contact_attach(wall[k], s));
-  }
+  TU_CHECK(cu_tube_setup(m, s, &cp, 0.5 * D, wall));
   TU_CHECK(fem_solver_fix_surface(s, "bottom", FEM_Z));
   TU_CHECK(fem_solver_setup(s));
   int rc = 0;
