@@ -112,6 +112,13 @@ int dem_bridge_run(DemBridge *b, int nsteps);
  * e.g. to pour at a softer stiffness and press at the working one. Takes effect at the next
  * dem_bridge_run; existing tangential contact springs keep their stored displacement. */
 int dem_bridge_set_young(DemBridge *b, double young, double dt);
+/* Scale every friction coefficient of the set-up parameters (grain-grain, grain-silicone,
+ * grain-piston/barrel, rolling) by scale in [0, 1]: 1 restores them. E.g. a frictionless pour
+ * packs densely, and the switch back to the working friction leaves the settled bed in
+ * equilibrium (a frictionless equilibrium has no tangential forces to cap). Takes effect at
+ * the next dem_bridge_run; the contact model stays (rolling resistance keeps its model with a
+ * zero coefficient). */
+int dem_bridge_scale_friction(DemBridge *b, double scale);
 /* Number of grains currently in the simulation (lost ones excluded). */
 int dem_bridge_count(DemBridge *b);
 /* Copy grain data out (any may be NULL): x, v, f [out] 3*n, radius [out] n; n = count. The

@@ -438,6 +438,23 @@ static int setup_pre_box(DemBridge *b) {
   return 0;
 }
 
+/* The friction fixes (m4 sliding, m5 rolling) for p's coefficients times scale; a fix
+ * redefined under its ID replaces the old one. */
+static int send_friction(DemBridge *b, const DemParams *p, double scale) {
+  /* wall-wall entries never act; they repeat the grain-wall values */
+  double mu = scale * p->friction, mw = scale * p->friction_wall, mp = scale * p->friction_piston;
+  SA_CHECK(send(b,
+                "fix m4 all property/global coefficientFriction peratomtypepair 3 "
+                "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g",
+                mu, mw, mp, mw, mw, mp, mp, mp, mp));
+  double r = scale * p->rolling_friction;
+  SA_CHECK(send(b,
+                "fix m5 all property/global coefficientRollingFriction peratomtypepair 3 "
+                "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g",
+                r, r, r, r, r, r, r, r, r));
+  return 0;
+}
+
 /* Commands once the box exists: materials, contact model, integrator, gravity, time step. */
 static int setup_post_box(DemBridge *b, const DemParams *p) {
   SA_CHECK(send(b, "communicate single vel yes"));
@@ -455,17 +472,7 @@ static int setup_post_box(DemBridge *b, const DemParams *p) {
                 "fix m3 all property/global coefficientRestitution peratomtypepair 3 "
                 "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g",
                 e, e, e, e, e, e, e, e, e));
-  /* wall-wall entries never act; they repeat the grain-wall values */
-  double mu = p->friction, mw = p->friction_wall, mp = p->friction_piston;
-  SA_CHECK(send(b,
-                "fix m4 all property/global coefficientFriction peratomtypepair 3 "
-                "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g",
-                mu, mw, mp, mw, mw, mp, mp, mp, mp));
-  double r = p->rolling_friction;
-  SA_CHECK(send(b,
-                "fix m5 all property/global coefficientRollingFriction peratomtypepair 3 "
-                "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g",
-                r, r, r, r, r, r, r, r, r));
+  SA_CHECK(send_friction(b, p, 1));
   /* rolling resistance off when its coefficient is 0 (same result, less work) */
   SA_CHECK(send(b, "pair_style gran model hertz tangential history%s",
                 b->rolling ? " rolling_friction epsd2" : ""));
@@ -992,6 +999,17 @@ int dem_bridge_set_young(DemBridge *b, double young, double dt) {
                 p.young, p.wall_young, p.wall_young));
   SA_CHECK(send(b, "timestep %.17g", p.dt));
   b->p = p;
+  b->need_setup = 1;
+  return 0;
+}
+
+int dem_bridge_scale_friction(DemBridge *b, double scale) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_scale_friction before dem_bridge_setup");
+  SA_REQUIRE(scale >= 0 && scale <= 1, SA_ERR_INPUT, "friction scale %g outside [0, 1]", scale);
+  /* the pair and wall styles read the coefficients again at the next full set-up (test
+   * dem_friction_switch: a block on a slope slides frictionless and sticks after the switch) */
+  SA_CHECK(send_friction(b, &b->p, scale));
   b->need_setup = 1;
   return 0;
 }
