@@ -124,9 +124,9 @@ static const SaParam dem_params[] = {
      "downward speed the grains are inserted with (a hopper's outflow): the column reaches the "
      "bed sooner than from rest; the impact speed is sqrt(pour_speed^2 + 2 g h) either way"},
     {"pour_friction", SA_PARAM_REAL, P(pour_friction), "-", "1", 0, 1, 0, NULL,
-     "every friction coefficient (grain, wall, piston, rolling) times this while pouring and "
-     "settling, then the working values (0 = a frictionless pour: a dense bed, as tapping "
-     "would make it; 1 = pour with the working friction: a loose bed)"},
+     "every friction coefficient (grain, wall, piston, rolling) times this while the grains "
+     "fall and land, then the working values for settling and the stroke (0 = a frictionless "
+     "pour: a denser bed, as tapping would make it; 1 = the working friction throughout)"},
     {"skin", SA_PARAM_REAL, P(skin), "-", "0.2", 0.01, 2, 0, NULL,
      "neighbour skin as a fraction of the bead diameter"},
     {"settle_speed", SA_PARAM_REAL, P(settle_speed), "m/s", "2e-3", 0, INFINITY, SA_MIN_OPEN,
