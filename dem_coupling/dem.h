@@ -119,6 +119,10 @@ int dem_bridge_set_young(DemBridge *b, double young, double dt);
  * the next dem_bridge_run; the contact model stays (rolling resistance keeps its model with a
  * zero coefficient). */
 int dem_bridge_scale_friction(DemBridge *b, double scale);
+/* Change the neighbour skin to skin [m] (checked as in dem_bridge_setup), e.g. a wide one
+ * while grains fall fast and a thin one for the slow stroke. The neighbour lists are rebuilt
+ * at the next dem_bridge_run; contact detection is exact for any skin. */
+int dem_bridge_set_skin(DemBridge *b, double skin);
 /* Number of grains currently in the simulation (lost ones excluded). */
 int dem_bridge_count(DemBridge *b);
 /* Copy grain data out (any may be NULL): x, v, f [out] 3*n, radius [out] n; n = count. The

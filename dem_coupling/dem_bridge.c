@@ -1014,6 +1014,18 @@ int dem_bridge_scale_friction(DemBridge *b, double scale) {
   return 0;
 }
 
+int dem_bridge_set_skin(DemBridge *b, double skin) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_set_skin before dem_bridge_setup");
+  DemParams p = b->p;
+  p.skin = skin;
+  SA_CHECK(params_check(&p));
+  SA_CHECK(send(b, "neighbor %.17g bin", p.skin));
+  b->p = p;
+  b->need_setup = 1;
+  return 0;
+}
+
 int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *radius) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   int n = nlocal(b);

@@ -128,9 +128,12 @@ static const SaParam dem_params[] = {
      "fall and land, then the working values for settling and the stroke (0 = a frictionless "
      "pour: a denser bed, as tapping would make it; 1 = the working friction throughout)"},
     {"skin", SA_PARAM_REAL, P(skin), "-", "0.05", 0.01, 2, 0, NULL,
-     "neighbour skin as a fraction of the bead diameter (lists are rebuilt when a grain or wall "
-     "node has moved half of it; 0.05 made a coupled DEM step 30 % cheaper than 0.2 and the "
-     "pour 8 % dearer, docs/dem.md)"},
+     "neighbour skin during the stroke as a fraction of the bead diameter (lists are rebuilt "
+     "when a grain or wall node has moved half of it; 0.05 made a coupled DEM step 30 % "
+     "cheaper than 0.2, docs/dem.md)"},
+    {"pour_skin", SA_PARAM_REAL, P(pour_skin), "-", "0.2", 0.01, 2, 0, NULL,
+     "neighbour skin while the grains are poured and settle, as a fraction of the bead "
+     "diameter (falling grains cross a thin skin in a few steps and rebuild the lists)"},
     {"settle_speed", SA_PARAM_REAL, P(settle_speed), "m/s", "2e-3", 0, INFINITY, SA_MIN_OPEN,
      NULL, "the bed counts as settled when the rms grain speed falls below this"},
     {"settle_time_max", SA_PARAM_REAL, P(settle_time_max), "s", "1.5", 0, INFINITY, SA_MIN_OPEN,

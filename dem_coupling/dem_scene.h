@@ -32,7 +32,7 @@ typedef struct {
 
 typedef struct {
   double dt_fraction, skin, settle_speed, max_overlap, balance_tol, settle_time_max;
-  double pour_softening, pour_speed, pour_friction;
+  double pour_softening, pour_speed, pour_friction, pour_skin;
   int seed, check_every;
 } DemNumericsCase;
 
