@@ -122,3 +122,8 @@ void dem_bore_destroy(DemBore **b) {
   free(*b);
   *b = NULL;
 }
+
+double dem_momentum_residual(const double F_walls[3], double W, const double dp[3], double T) {
+  double r[3] = {F_walls[0] + dp[0] / T, F_walls[1] + dp[1] / T, F_walls[2] + W + dp[2] / T};
+  return sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+}

@@ -18,6 +18,13 @@ int dem_bore_count_outside(const DemBore *b, const double *xw, int n, const doub
                            int *first);
 void dem_bore_destroy(DemBore **b);
 
+/* Momentum balance of the bed over a time T [s]: the mean force the grains put on all walls
+ * F_walls [in] 3 [N], their weight W [N] (along -z) and the change of their total momentum dp
+ * [in] 3 [kg m/s] over T. Newton's second law for the grains, dp / T = -F_walls - W e_z, so the
+ * residual |F_walls + W e_z + dp / T| [N] returned is zero up to the sampling of the mean force
+ * (lost or invented force shows in it; inertia does not, unlike a static balance). */
+double dem_momentum_residual(const double F_walls[3], double W, const double dp[3], double T);
+
 /* Generalised winding number of the closed triangle surface (tri over xyz) about point p:
  * sum of signed solid angles / 4 pi (van Oosterom & Strackee 1983). +-1 inside, 0 outside. */
 double dem_winding_number(const double *xyz, const int *tri, int ntri, const double p[3]);

@@ -24,6 +24,7 @@
 
 #include "dem.h"
 #include "dem_checks.h"
+#include "dem_piston.h"
 #include "dem_iqn.h"
 #include "dem_scene.h"
 #include "fem_contrib.h"
@@ -79,6 +80,8 @@ typedef struct {
   double F_mesh[N_MESH][3];
   double angle, piston_force, overlap, balance, phi, phi0, V_bed0, wall_fz, barrel_fz;
   double inertial, inertial_max; /* inertial number of the bed (now, largest in the stroke) */
+  double v_piston, T_step;       /* piston speed at the end of the step, step duration */
+  double p_start[3];             /* the bed's momentum at the start of the step */
   int newton, dynamic, rigid;
   /* outputs */
   SaCsv *csv;
@@ -538,9 +541,9 @@ static int lower_piston(Run *g, double *z_contact) {
 
 /* ------------------------------------------------------------------ one coupling step */
 
-/* DEM over time T with the piston moving from z0 at speed v (downward) and the wall moving
- * from xw_prev to xw_cur; forces averaged over the samples. */
-static int dem_step(Run *g, double z0, double v, double T) {
+/* DEM over time T with the piston moving down from z0, its speed going uniformly from v0 to
+ * v1, and the wall moving from xw_prev to xw_cur; forces averaged over the samples. */
+static int dem_step(Run *g, double z0, double v0, double v1, double T) {
   const DemCouplingCase *cc = &g->sc->coupling;
   long nsteps = (long)ceil(T / g->dt);
   int chunk = cc->sample_every, nsamp = 0;
@@ -564,7 +567,9 @@ static int dem_step(Run *g, double z0, double v, double T) {
       free(chk);
       sa_log(SA_LOG_DEBUG, "dem", "wall node read-back: largest difference %.3g m", e);
     }
-    SA_CHECK(set_piston(g, z0 - v * te, -v));
+    double ds, vp;
+    dem_piston_at(0, v0, v1, T, te, &ds, &vp);
+    SA_CHECK(set_piston(g, z0 - ds, -vp));
     g->t_exchange += sa_time_now() - t0;
     t0 = sa_time_now();
     SA_CHECK(dem_bridge_run(g->b, n));
@@ -727,7 +732,8 @@ static double dist2(const double *a, const double *b, int n) {
  * wall motion. With the Robin springs the FEM knows the bed's local stiffness (a
  * preconditioner); at the converged x their force vanishes (anchor = x), so the answer does
  * not depend on interface_stiffness. */
-static int coupling_step_iterated(Run *g, double z0, double v, double T, double T_last) {
+static int coupling_step_iterated(Run *g, double z0, double v0, double v1, double T,
+                                  double T_last) {
   const DemCouplingCase *cc = &g->sc->coupling;
   int n3 = 3 * g->nv;
   size_t bytes = sizeof(double) * (size_t)n3;
@@ -755,7 +761,7 @@ static int coupling_step_iterated(Run *g, double z0, double v, double T, double 
     }
     memcpy(g->xw_prev, g->x_start, bytes);
     memcpy(g->xw_cur, g->x_try, bytes);
-    SA_CHECK(dem_step(g, z0, v, T));
+    SA_CHECK(dem_step(g, z0, v0, v1, T));
     SA_CHECK(fem_step(g, T)); /* xw_cur <- x~ */
     /* Stop on the size of the quasi-Newton update, not of the residual: with the Robin
      * springs the residual of a soft mode (the actuator bending with its bed) is the error
@@ -810,12 +816,24 @@ static int coupling_step_iterated(Run *g, double z0, double v, double T, double 
   return 0;
 }
 
-/* One coupling step: staggered (one DEM pass, one FEM solve; the wall the FEM returns is
- * used in the next step) or iterated. */
-static int coupling_step(Run *g, double z0, double v, double T, double T_last) {
+/* Total momentum of the grains [kg m/s] (equal masses). */
+static int bed_momentum(Run *g, double p[3]) {
+  int n = dem_bridge_count(g->b);
+  SA_CHECK(dem_bridge_particles(g->b, NULL, g->pv, NULL, NULL));
+  p[0] = p[1] = p[2] = 0;
+  for (int i = 0; i < n; i++)
+    for (int d = 0; d < 3; d++) p[d] += g->m_grain * g->pv[3 * i + d];
+  return 0;
+}
+
+/* One coupling step, the piston's speed going from v0 to v1 over T: staggered (one DEM pass,
+ * one FEM solve; the wall the FEM returns is used in the next step) or iterated. */
+static int coupling_step(Run *g, double z0, double v0, double v1, double T, double T_last) {
+  g->v_piston = v1, g->T_step = T;
+  SA_CHECK(bed_momentum(g, g->p_start));
   if (g->sc->coupling.iterations > 1 && !g->rigid)
-    return coupling_step_iterated(g, z0, v, T, T_last);
-  SA_CHECK(dem_step(g, z0, v, T));
+    return coupling_step_iterated(g, z0, v0, v1, T, T_last);
+  SA_CHECK(dem_step(g, z0, v0, v1, T));
   return fem_step(g, T);
 }
 
@@ -834,20 +852,26 @@ static int step_checks(Run *g, int step, double s_disp, int full) {
              "piston displacement %.3f mm: the grains are too soft for this load (lower "
              "[grains] softening) or the piston too fast", g->overlap, sc->dem.max_overlap,
              s_disp * 1e3);
-  /* force balance of the bed: the forces it puts on the walls carry its weight */
+  /* force balance of the bed: the forces it puts on the walls carry its weight and change its
+   * momentum (Newton's second law over the step; a jolted or fast bed is no failure here, the
+   * inertial number reports it) */
   double W = g->n_grains * g->m_grain * (sc->coupling.gravity ? G_ACC : 0), F[3] = {0, 0, 0};
   for (int m = 0; m < N_MESH; m++)
     for (int d = 0; d < 3; d++) F[d] += g->F_mesh[m][d];
+  double p_end[3], dp[3];
+  SA_CHECK(bed_momentum(g, p_end));
+  for (int d = 0; d < 3; d++) dp[d] = p_end[d] - g->p_start[d];
   double scale = fabs(g->F_mesh[M_PISTON][2]) + W;
-  g->balance = sqrt(F[0] * F[0] + F[1] * F[1] + (F[2] + W) * (F[2] + W)) / scale;
+  g->balance = dem_momentum_residual(F, W, dp, g->T_step) / scale;
   g->piston_force = g->F_mesh[M_PISTON][2];
   g->wall_fz = g->F_mesh[M_WALL][2], g->barrel_fz = g->F_mesh[M_BARREL][2];
   if (step > 0)
     SA_REQUIRE(g->balance <= sc->dem.balance_tol, SA_ERR_DOMAIN, "force balance of the bed "
                "misses by %.1f %% of the load (piston %.4g N, walls %.4g N, barrel %.4g N, weight "
-               "%.4g N) at piston displacement %.3f mm: the bed is not quasi-static (slow the "
-               "piston) or force is lost", 100 * g->balance, g->piston_force, g->wall_fz,
-               g->barrel_fz, W, s_disp * 1e3);
+               "%.4g N, momentum change %.4g N s) at piston displacement %.3f mm: force is "
+               "lost or invented (grains tunnelling, a DEM time step too large for the contact "
+               "stiffness)", 100 * g->balance, g->piston_force, g->wall_fz, g->barrel_fz, W,
+               dp[2], s_disp * 1e3);
   /* volume balance: bed volume = cavity + barrel below the piston; packing follows */
   double V = fem_solver_cavity_volume(g->s);
   double V_bed = g->V_bed0 + (V - g->V0) - M_PI * R_BORE * R_BORE * s_disp;
@@ -976,7 +1000,7 @@ static int output_row(Run *g, double s_disp, double time) {
    * flow needs I << 1e-3; while the piston force is still ~0 (loose top layer) I is large but
    * meaningless, so the stroke's largest I is taken where the force passed 1 N. */
   double H = g->z_piston + 80e-3, P = fabs(g->piston_force) / (M_PI * R_BORE * R_BORE);
-  double v = s_disp > 0 ? g->sc->piston.speed : 0;
+  double v = s_disp > 0 ? g->v_piston : 0;
   g->inertial = P > 0 ? v / H * g->d / sqrt(P / g->sc->grains.density) : 0;
   if (fabs(g->piston_force) >= 1.0) g->inertial_max = fmax(g->inertial_max, g->inertial);
   double row[N_COLS] = {s_disp, ang, g->piston_force, Vd, V / g->V0 - 1, V - g->V0, g->phi,
@@ -1222,7 +1246,7 @@ static int stroke(Run *g, double *s_reached) {
       break;
     }
     if (j < N_PRELOAD) {
-      rc = coupling_step(g, g->z_contact, 0, T, j > 0 ? T : 0);
+      rc = coupling_step(g, g->z_contact, 0, 0, T, j > 0 ? T : 0);
       if (!rc) rc = step_checks(g, 0, 0, j == N_PRELOAD - 1);
       if (rc) break;
       g->time += T;
@@ -1232,9 +1256,13 @@ static int stroke(Run *g, double *s_reached) {
       }
     } else {
       int k = j - N_PRELOAD + 1;
-      double s0 = (k - 1) * cc->interval, s1 = fmin(k * cc->interval, sc->piston.stroke);
-      double Tk = (s1 - s0) / v;
-      rc = coupling_step(g, g->z_contact - s0, v, Tk, k > 1 ? cc->interval / v : T);
+      double s0, s1, v0, v1, Tk, T_last = T, q[4];
+      const DemPistonCase *pc = &sc->piston;
+      dem_piston_step(pc->stroke, cc->interval, v, pc->ramp_steps, k, &s0, &s1, &v0, &v1, &Tk);
+      if (k > 1)
+        dem_piston_step(pc->stroke, cc->interval, v, pc->ramp_steps, k - 1, q, q + 1, q + 2,
+                        q + 3, &T_last);
+      rc = coupling_step(g, g->z_contact - s0, v0, v1, Tk, T_last);
       if (!rc) rc = step_checks(g, k, s1, k % sc->dem.check_every == 0 || k == nint);
       if (rc) break;
       g->time += Tk;

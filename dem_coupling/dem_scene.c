@@ -57,6 +57,9 @@ static const SaParam piston_params[] = {
      "rigid feed barrel above the cavity (z = 0 .. barrel_length)"},
     {"contact_force", SA_PARAM_REAL, P(contact_force), "N", "0.05", 0, INFINITY, SA_MIN_OPEN,
      NULL, "piston force that counts as touching the bed (displacement zero)"},
+    {"ramp_steps", SA_PARAM_INT, P(ramp_steps), "-", "0", 0, 10000, 0, NULL,
+     "the piston starts from rest and accelerates uniformly to speed over this many coupling "
+     "steps (0 = at speed from the first step: a jolt of the bed for a fast piston)"},
 };
 #undef P
 #define P(f) offsetof(DemCouplingCase, f)

@@ -20,6 +20,7 @@ typedef struct {
 
 typedef struct {
   double stroke, speed, approach_speed, barrel_length, contact_force;
+  int ramp_steps; /* coupling steps of uniform acceleration from rest to speed */
 } DemPistonCase;
 
 typedef struct {

@@ -10,7 +10,7 @@ add_library(sa_dem_scene STATIC ${_dem_dir}/dem_scene.c)
 target_include_directories(sa_dem_scene PUBLIC ${_dem_dir})
 target_link_libraries(sa_dem_scene PUBLIC sa_fem sa_core PRIVATE ${CMAKE_DL_LIBS} m)
 
-add_library(softact_dem MODULE ${_dem_dir}/dem_granular.c ${_dem_dir}/dem_checks.c ${_dem_dir}/dem_iqn.c $<TARGET_OBJECTS:sa_dem>)
+add_library(softact_dem MODULE ${_dem_dir}/dem_granular.c ${_dem_dir}/dem_checks.c ${_dem_dir}/dem_iqn.c ${_dem_dir}/dem_piston.c $<TARGET_OBJECTS:sa_dem>)
 target_include_directories(softact_dem PRIVATE ${_dem_dir}
   $<TARGET_PROPERTY:sa_core,INTERFACE_INCLUDE_DIRECTORIES>
   $<TARGET_PROPERTY:sa_fem,INTERFACE_INCLUDE_DIRECTORIES>

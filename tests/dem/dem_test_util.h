@@ -82,6 +82,21 @@ static inline void t_square(double cx, double cy, double z0, double h, double xy
   memcpy(tri, t, sizeof t);
 }
 
+/* A bridge set up with p, a steel plate of side 20 mm at z = 0 (mesh *id) and one sphere of
+ * p's diameter inserted with its bottom `gap` above the plate at (cx, cy). */
+static inline void t_sphere_on_plate(const DemParams *p, double cx, double cy, double gap,
+                                     DemBridge **b, int *id) {
+  double xyz[12];
+  int tri[6], ins = 0;
+  T_CHECK(dem_bridge_create(t_log(), b));
+  T_CHECK(dem_bridge_setup(*b, p));
+  t_square(0, 0, 0, 0.01, xyz, tri);
+  T_CHECK(dem_bridge_add_mesh(*b, "plate", 4, xyz, 2, tri, DEM_WALL_STEEL, id));
+  T_CHECK(dem_bridge_insert_cylinder(*b, cx, cy, 0.5 * p->diameter, gap, gap + p->diameter, 1,
+                                     &ins));
+  t_true("one sphere inserted", ins == 1);
+}
+
 /* Open vertical cylinder (axis (cx, cy), radius r, z0..z1), nseg around, nz rings of cells:
  * (nz+1) nseg vertices, 2 nseg nz triangles; caller frees *xyz, *tri. */
 static inline void t_tube(double cx, double cy, double r, double z0, double z1, int nseg, int nz,

@@ -33,14 +33,8 @@ int main(void) {
   const double R = 0.5 * p.diameter, m = p.density * 4.0 / 3.0 * M_PI * R * R * R;
 
   DemBridge *b = NULL;
-  T_CHECK(dem_bridge_create(t_log(), &b));
-  T_CHECK(dem_bridge_setup(b, &p));
-  double xyz[12];
-  int tri[6], id, ins;
-  t_square(0, 0, 0, 0.01, xyz, tri);
-  T_CHECK(dem_bridge_add_mesh(b, "plate", 4, xyz, 2, tri, DEM_WALL_STEEL, &id));
-  T_CHECK(dem_bridge_insert_cylinder(b, -0.004, 0.004, R, 0.01e-3, 0.01e-3 + p.diameter, 1, &ins));
-  t_true("one sphere inserted", ins == 1);
+  int id;
+  t_sphere_on_plate(&p, -0.004, 0.004, 0.01e-3, &b, &id);
 
   double E[2] = {p.young, 10 * p.young};
   for (int k = 0; k < 2; k++) {
