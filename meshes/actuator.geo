@@ -20,6 +20,7 @@
 // 0.5 mm faces of the rings and band force about 0.5 mm elements there whatever h_ring is; h_ring
 // <= 4 ring_h keeps the sagitta of a curved tet10 edge on the outer surface, c^2 / (8 R_out),
 // at a tenth of the ring height (coarser rings gave tet10 elements with det J < 0 at h = 3 mm).
+// h_corner > 0 (default 0: off) grades the size toward the corners of the ring sections.
 // Every number below is a parameter: define it before including this file to override.
 
 SetFactory("OpenCASCADE");
@@ -42,6 +43,8 @@ If(!Exists(h)) h = 2.0e-3; EndIf
 If(!Exists(h_band)) h_band = Min(h, 2 * (band_r_out - band_r_in)); EndIf
 If(!Exists(h_ring)) h_ring = Min(h, 4 * ring_h); EndIf
 If(!Exists(thin_grow)) thin_grow = h; EndIf
+If(!Exists(h_corner)) h_corner = 0; EndIf
+If(!Exists(corner_grade)) corner_grade = 0.5; EndIf
 
 eps = 1e-3 * ring_h; // bounding-box tolerance, far below every feature size
 L_tot = L_cav + t_cap;
@@ -134,6 +137,15 @@ If(rings)
   gr = StrCat(Sprintf("Max(Fabs(z-(%.9g-%.9g*", ring_z0, ring_pitch), kr,
               Sprintf("))-%.9g, %.9g-", 0.5 * ring_h, R_out - ring_d), R, ")");
   F = StrCat("Min(", F, Sprintf(", %.9g + %.9g*Max(0, ", h_ring, (h - h_ring) / thin_grow), gr, "))");
+  // h_corner > 0: grading toward the four corner circles of each ring section, where the
+  // bonded stiff ring makes the stresses singular (docs/fem_time_to_accuracy.md): the size is
+  // h_corner + corner_grade * (distance to the nearest corner), capped by the sizes above.
+  If(h_corner > 0)
+    dzc = StrCat("(Fabs(z-(", Sprintf("%.9g-%.9g*", ring_z0, ring_pitch), kr, Sprintf("))-%.9g)", 0.5 * ring_h));
+    d_in = StrCat("Sqrt((", R, Sprintf("-%.9g)^2+", R_out - ring_d), dzc, "^2)");
+    d_out = StrCat("Sqrt((", R, Sprintf("-%.9g)^2+", R_out), dzc, "^2)");
+    F = StrCat("Min(", F, Sprintf(", %.9g + %.9g*Min(", h_corner, corner_grade), d_in, ",", d_out, "))");
+  EndIf
 EndIf
 Field[1] = MathEval;
 Field[1].F = StrCat(F, "");

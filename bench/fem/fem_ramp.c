@@ -11,6 +11,7 @@
  * there) and reports the ramp's wall time in units of it (issue 14's metric).
  *
  *   fem_ramp [key=value ...]   keys: h hb hr (mesh [m]), tg (thin_grow [m], 0: the .geo's),
+ *     hc (h_corner [m], 0: no grading toward the ring corners), gc (corner_grade),
  *     p_max [Pa], n_out, merit (lazy|energy),
  *     indefinite (lu|modify), predictor (new_load|equilibrium|reuse), reuse_rate, dl_init,
  *     easy_iter, grow, max_iter, max_stall, ls_memory, rtol, dl_max, krylov_max, krylov_rtol,
@@ -39,9 +40,16 @@ static double cpu_now(void) {
 
 /* tg > 0: thin_grow of actuator.geo (the distance over which the band and ring sizes grow
  * back to h; the .geo's default is h). */
+static double g_hc = 0, g_gc = 0.5; /* ring-corner grading (actuator.geo h_corner, corner_grade) */
 static int make_mesh(double h, double hb, double hr, double tg, FemMesh **m, FemMaterial *mats) {
-  FemGeoParam gp[] = {{"h_band", hb}, {"h_ring", hr}, {"thin_grow", tg}};
-  SA_CHECK(fem_mesh_generate(SOFTACT_MESH_DIR "/actuator.geo", tg > 0 ? 3 : 2, gp, h, 2, m));
+  FemGeoParam gp[5] = {{"h_band", hb}, {"h_ring", hr}};
+  int np = 2;
+  if (tg > 0) gp[np++] = (FemGeoParam){"thin_grow", tg};
+  if (g_hc > 0) {
+    gp[np++] = (FemGeoParam){"h_corner", g_hc};
+    gp[np++] = (FemGeoParam){"corner_grade", g_gc};
+  }
+  SA_CHECK(fem_mesh_generate(SOFTACT_MESH_DIR "/actuator.geo", np, gp, h, 2, m));
   for (int r = 0; r < (*m)->nregions; r++) {
     if (!strcmp((*m)->region_names[r], "silicone"))
       mats[r] = (FemMaterial){.kind = FEM_MAT_YEOH, .c10 = 0.11e6, .c20 = 0.02e6,
@@ -126,6 +134,9 @@ int main(int argc, char **argv) {
     SA_CHECK(make_mesh(4e-3, 2e-3, 2e-3, 0.0, &m0, mref));
     if (ref_factor(m0, mref, &tf0, &tc0, &nf0)) goto fail;
   }
+  /* the reference mesh above is the default one, never graded */
+  g_hc = atof(arg(argc, argv, "hc", "0"));
+  g_gc = atof(arg(argc, argv, "gc", "0.5"));
   if (make_mesh(h, hb, hr, tg, &m, mats)) goto fail;
   FemSolver *s;
   if (make_solver(m, mats, &prm, &s)) goto fail;
@@ -154,6 +165,7 @@ int main(int argc, char **argv) {
   if (want_ref && ref_factor(m0, mref, &tf1, &tc1, &nf1)) goto fail;
   double tref = want_ref ? 0.5 * (tf0 + tf1) : NAN;
   printf("thin_grow = %.2f mm\n", 1e3 * tg);
+  printf("h_corner = %.3f mm\ncorner_grade = %.3f\n", 1e3 * g_hc, g_gc);
   printf("mesh = %.2f/%.2f/%.2f mm\nnfree = %d\nnelem = %d\ncompleted = %d\n", 1e3 * h, 1e3 * hb,
          1e3 * hr, st.nfree, st.nelem, rc == 0);
   printf("factorisations = %d\ncholesky = %d\nlu = %d\nnot_pd_attempts = %d\nmodified = %d\n"
