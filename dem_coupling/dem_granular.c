@@ -546,7 +546,8 @@ static int lower_piston(Run *g, double *z_contact) {
 static int dem_step(Run *g, double z0, double v0, double v1, double T) {
   const DemCouplingCase *cc = &g->sc->coupling;
   long nsteps = (long)ceil(T / g->dt);
-  int chunk = cc->sample_every, nsamp = 0;
+  int chunk = cc->sample_every, nsamp = 0, wall_every = cc->wall_every;
+  long next_wall = 0; /* DEM step at which the wall is placed next */
   for (int k = 0; k < N_MESH; k++) g->F_mesh[k][0] = g->F_mesh[k][1] = g->F_mesh[k][2] = 0;
   memset(g->f_sum, 0, sizeof(double) * 3 * (size_t)g->nt);
   for (int k = 0; k < 3 * g->nv; k++) g->vw[k] = (g->xw_cur[k] - g->xw_prev[k]) / T;
@@ -556,10 +557,16 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
     int n = nsteps - done < chunk ? (int)(nsteps - done) : chunk;
     double te = (done + n) * g->dt, a = fmin(te / T, 1.0);
     double t0 = sa_time_now();
-    /* positions at the end of the chunk; velocities constant over the step */
-    for (int k = 0; k < 3 * g->nv; k++) g->xw[k] = g->xw_prev[k] + a * (g->xw_cur[k] - g->xw_prev[k]);
-    if (!g->rigid) /* LIGGGHTS alone: the wall stays where it is */
-      SA_CHECK(dem_bridge_set_mesh_nodes(g->b, g->mesh_id[M_WALL], g->xw, g->vw));
+    /* positions at the end of the chunk (wall_every = 1) or at the middle of the next window
+     * of wall_every steps; velocities constant over the step */
+    if (done >= next_wall) {
+      double aw = wall_every == 1 ? a : fmin((done + 0.5 * (wall_every + 1)) * g->dt / T, 1.0);
+      for (int k = 0; k < 3 * g->nv; k++)
+        g->xw[k] = g->xw_prev[k] + aw * (g->xw_cur[k] - g->xw_prev[k]);
+      if (!g->rigid) /* LIGGGHTS alone: the wall stays where it is */
+        SA_CHECK(dem_bridge_set_mesh_nodes(g->b, g->mesh_id[M_WALL], g->xw, g->vw));
+      next_wall = done + wall_every;
+    }
     if (sa_log_get_level() >= SA_LOG_DEBUG && done == 0) {
       double *chk = malloc(sizeof(double) * 3 * (size_t)g->nv), e = 0;
       if (chk && !dem_bridge_mesh_nodes(g->b, g->mesh_id[M_WALL], chk))
@@ -587,6 +594,12 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
     nsamp++;
     g->t_exchange += sa_time_now() - t0;
     done += n;
+  }
+  if (wall_every > 1 && !g->rigid) { /* the step ends with the wall where the FEM put it */
+    double t0 = sa_time_now();
+    memcpy(g->xw, g->xw_cur, sizeof(double) * 3 * (size_t)g->nv);
+    SA_CHECK(dem_bridge_set_mesh_nodes(g->b, g->mesh_id[M_WALL], g->xw, g->vw));
+    g->t_exchange += sa_time_now() - t0;
   }
   for (int k = 0; k < 3 * g->nt; k++) {
     g->f_sum[k] /= nsamp;

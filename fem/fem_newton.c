@@ -93,10 +93,12 @@ static int factorize_modified(FemSolver *s, double p_asm, int at_iterate, int st
     s->nw.indef_step = 1;
     return SA_ERR_NOT_SPD;
   }
+  /* without a follower pressure (p_asm = 0: dead loads, e.g. the grains' wall forces) the
+   * consistent tangent is K_int already: nothing to reduce, no second attempt */
   double betas[2] = {0.0, 0.0}, cur = 1.0;
   int nb = 0;
   if (!at_iterate && s->ct.p_last > 0 && s->ct.p_last < p_asm) betas[nb++] = s->ct.p_last / p_asm;
-  betas[nb++] = 0.0;
+  if (p_asm > 0) betas[nb++] = 0.0;
   for (int i = 0; i < nb; i++) {
     if (sa_interrupted()) break; /* each attempt is a factorisation (seconds) */
     fem_asm_add_load_stiffness(s, s->x, (betas[i] - cur) * p_asm);
@@ -140,8 +142,10 @@ static int factorize(FemSolver *s, const StepKind *sk, double p_asm, int eff_don
   }
   int rc;
   s->nw.indef_step = 0;
-  if (sym && s->prm.indefinite == FEM_INDEFINITE_MODIFY && !sk->dynamic && s->as.npf > 0 &&
-      p_asm > 0 && s->ct.control == FEM_CONTROL_LOAD) {
+  /* Under load control (static or dynamic, with or without a follower pressure) an indefinite
+   * tangent means the iterate or the increment went too far: step back or cut, never LU.
+   * Volume control keeps the LU: there an indefinite tangent past a limit point is the path. */
+  if (sym && s->prm.indefinite == FEM_INDEFINITE_MODIFY && s->ct.control == FEM_CONTROL_LOAD) {
     rc = factorize_modified(s, p_asm, at_iterate, step_back);
     if (rc > 0 && s->nw.indef_step) /* step back (not a K_int failure: no limit-point flag) */
       return SA_ERROR(SA_ERR_NOT_SPD, "tangent not positive definite at iteration past the "
