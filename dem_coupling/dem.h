@@ -92,14 +92,6 @@ int dem_bridge_finalize_walls(DemBridge *b);
  * moved more than half the skin since the last neighbour build. A vertex outside the box is
  * refused with SA_ERR_DOMAIN (LIGGGHTS would abort on a lost wall element). */
 int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const double *v);
-/* Move mesh id to xyz, v [in] 3*nverts twice: through softact's one-pass update (what
- * dem_bridge_set_mesh_nodes does) and through LIGGGHTS' own routines, and count the surface
- * values (centres, bounding radii, edge vectors and lengths, normals, areas, obtuse-angle
- * index, rebuild request) that differ in any bit, *differ [out]; the seconds each update took,
- * *t_lean and *t_liggghts [out] (any output may be NULL). The mesh is left as LIGGGHTS
- * computed it. No input checks: a test and benchmark of the update, not for the run loop. */
-int dem_bridge_mesh_update_check(DemBridge *b, int id, const double *xyz, const double *v,
-                                 long *differ, double *t_lean, double *t_liggghts);
 /* Force the grains exert on each triangle of mesh id, f [out] 3*ntri [N], at the last step. */
 int dem_bridge_mesh_forces(DemBridge *b, int id, double *f);
 int dem_bridge_mesh_ntri(DemBridge *b, int id);

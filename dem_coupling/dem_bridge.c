@@ -30,7 +30,6 @@
 
 #include "dem_shim.h"
 #include "sa_error.h"
-#include "sa_log.h"
 
 #define DEM_CMD_MAX 4096
 #define DEM_NAME_MAX 31
@@ -792,46 +791,6 @@ int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const dou
   else
     memset(m->v, 0, 3 * (size_t)m->nverts * sizeof *m->v);
   dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, v, b->ran);
-  return 0;
-}
-
-enum { SURF_VALUES = 34 }; /* what dem_shim_mesh_surface reports per element */
-
-/* Every surface value of every element of the mesh, out [out] SURF_VALUES per element. */
-static void surface_snapshot(DemMesh *m, double *out) {
-  int n = dem_shim_mesh_size(m->shim);
-  for (int i = 0; i < n; i++) dem_shim_mesh_surface(m->shim, i, out + (size_t)SURF_VALUES * i);
-}
-
-int dem_bridge_mesh_update_check(DemBridge *b, int id, const double *xyz, const double *v,
-                                 long *differ, double *t_lean, double *t_liggghts) {
-  DemMesh *m = NULL;
-  SA_CHECK(mesh_get(b, id, &m));
-  int n = dem_shim_mesh_size(m->shim);
-  size_t len = (size_t)SURF_VALUES * (n > 0 ? n : 1);
-  double *lean = malloc(len * sizeof *lean), *ref = malloc(len * sizeof *ref);
-  if (!lean || !ref) {
-    free(lean), free(ref);
-    return SA_ERROR(SA_ERR_MEMORY, "mesh '%s': no memory for the update check", m->fix_id + 5);
-  }
-  double t0 = sa_time_now();
-  int r_lean = dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, xyz, v, b->ran);
-  double t1 = sa_time_now();
-  surface_snapshot(m, lean);
-  double t2 = sa_time_now();
-  int r_ref = dem_shim_mesh_set_nodes_liggghts(b->lmp, m->shim, m->idx, xyz, v, b->ran);
-  double t3 = sa_time_now();
-  surface_snapshot(m, ref);
-  long d = r_lean != r_ref; /* the rebuild request counts as one value */
-  for (size_t k = 0; k < (size_t)SURF_VALUES * n; k++)
-    d += memcmp(lean + k, ref + k, sizeof *lean) != 0;
-  free(lean), free(ref);
-  if (differ) *differ = d;
-  if (t_lean) *t_lean = t1 - t0;
-  if (t_liggghts) *t_liggghts = t3 - t2;
-  memcpy(m->xyz, xyz, 3 * (size_t)m->nverts * sizeof *xyz);
-  if (v) memcpy(m->v, v, 3 * (size_t)m->nverts * sizeof *v);
-  else memset(m->v, 0, 3 * (size_t)m->nverts * sizeof *m->v);
   return 0;
 }
 

@@ -34,17 +34,6 @@ int dem_shim_mesh_make_moving(void *mesh);
  * 0 if not. */
 int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double *xyz,
                             const double *v, int after_setup);
-/* The same through LIGGGHTS' own routines (updateCenterRbound, recalcLocal/GhostSurfProperties,
- * decideRebuild): the reference dem_shim_mesh_set_nodes is tested against, bit for bit. The
- * lean version does the same arithmetic in one pass over the elements, without LIGGGHTS'
- * per-element heap allocation (TriMesh::calcArea) and repeated norms: the wall moves every DEM
- * step, so this is the exchange's largest cost (docs/dem.md). */
-int dem_shim_mesh_set_nodes_liggghts(void *lmp, void *mesh, const int *idx, const double *xyz,
-                                     const double *v, int after_setup);
-/* What a moved element i holds after an update, out [out] 34: centre 3, bounding radius,
- * edge lengths 3, unit edge vectors 9, edge normals 9, unit normal 3, area, accumulated area,
- * obtuse-angle index, mesh area (global, owned, ghost). Returns 34, or -1 for a bad index. */
-int dem_shim_mesh_surface(void *mesh, int i, double *out);
 /* Force of the last step on each triangle, f [out] at 3*id [N]; -1 if the mesh tracks no
  * stress. */
 int dem_shim_mesh_forces(void *mesh, double *f);
