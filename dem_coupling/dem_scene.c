@@ -96,9 +96,10 @@ static const SaParam coupling_params[] = {
      "DEM steps between wall updates and force samples within a coupling step (> 1 moves the "
      "wall in jumps, which pushes the grains along the motion: docs/dem.md)"},
     {"wall_every", SA_PARAM_INT, P(wall_every), "-", "1", 1, 100000, 0, NULL,
-     "DEM steps between updates of the deforming wall's geometry in LIGGGHTS (1 = every step, "
-     "exact; k > 1 places the wall at the middle of each window of k steps, its velocity set "
-     "all along; forces and the piston still every sample_every steps: docs/dem.md)"},
+     "DEM steps between updates of the deforming wall's geometry in LIGGGHTS while the piston "
+     "moves (1 = every step, exact; k > 1 places the wall at the middle of each window of k "
+     "steps, its velocity set all along; forces and the piston still every sample_every steps; "
+     "with the piston at rest always every step: docs/dem.md)"},
     {"gravity", SA_PARAM_BOOL, P(gravity), "-", "1", 0, 0, 0, NULL,
      "gravity (-z, 9.81 m/s^2) on grains and silicone"},
     {"checkpoint_every", SA_PARAM_INT, P(checkpoint_every), "-", "20", 0, 100000, 0, NULL,
