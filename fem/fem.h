@@ -78,7 +78,10 @@ typedef enum {
                                 * step to it is halved (up to the line search's limit; then
                                 * K_int alone is tried). If even that fails, or at the first
                                 * iterate, the substep fails (recoverable:
-                                * the increment is cut; a limit point is diagnosed as before) */
+                                * the increment is cut; a limit point is diagnosed as before).
+                                * Any load-controlled solve, static or dynamic; without a
+                                * follower pressure K_int is the consistent tangent itself.
+                                * Volume control always takes the LU. */
 } FemIndefinite;
 
 typedef struct {
