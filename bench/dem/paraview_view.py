@@ -1,8 +1,10 @@
 # ParaView view of a FEM-DEM result, opened as a user would: the two VTK time series
 # (fem.vtk.series, grains.vtk.series), whose time values are the piston displacement in mm.
 # Prints the time values ParaView reads, then renders the last time: the silicone by von Mises
-# stress (transparent), the grains by the magnitude of their contact force.
-#   xvfb-run -a pvbatch bench/dem/paraview_view.py RESULTS_DIR [OUT.png]
+# stress (transparent), the grains by the magnitude of their `force` array: LIGGGHTS' total
+# force on each grain (contacts + weight), i.e. its unbalanced force, near zero in a
+# quasi-static bed (max 3e-3 N at 2.5 mm against a 39 N piston): not the force chains.
+#   xvfb-run -a -s "-screen 0 1280x1024x24 +extension GLX" pvbatch bench/dem/paraview_view.py RESULTS_DIR [OUT.png]
 #   (needs python3-paraview and xvfb)
 from paraview.simple import *
 import sys
