@@ -88,6 +88,10 @@ struct DemBridge {
   /* the last checkpoint written or read; resumed: the meshes still to come are its */
   Checkpoint *ck; /* [owned] */
   int resumed;
+  /* where dem_bridge_max_overlap found its largest overlap: the mesh (-1: two grains) and
+   * the grain's centre (the first grain of a pair) */
+  int ov_mesh;
+  double ov_pos[3];
 };
 
 static void ck_free(Checkpoint **ck);
@@ -1085,8 +1089,16 @@ double dem_bridge_kinetic_energy(DemBridge *b) {
   return e;
 }
 
+const char *dem_bridge_overlap_site(const DemBridge *b, double pos[3]) {
+  if (!b) return "";
+  memcpy(pos, b->ov_pos, sizeof b->ov_pos);
+  return b->ov_mesh < 0 || b->ov_mesh >= b->nmesh ? "two grains" : b->mesh[b->ov_mesh].fix_id;
+}
+
 double dem_bridge_max_overlap(DemBridge *b) {
   if (!b || !b->lmp) return 0;
+  b->ov_mesh = -1;
+  b->ov_pos[0] = b->ov_pos[1] = b->ov_pos[2] = NAN;
   int n = nlocal(b);
   if (n == 0) return 0;
   double **x = lammps_extract_atom(b->lmp, "x");
@@ -1118,7 +1130,10 @@ double dem_bridge_max_overlap(DemBridge *b) {
             double s = rad[i] + rad[j];
             if (d2 >= s * s) continue;
             double ov = (s - sqrt(d2)) / fmin(2 * rad[i], 2 * rad[j]);
-            if (ov > worst) worst = ov;
+            if (ov > worst) {
+              worst = ov, b->ov_mesh = -1;
+              memcpy(b->ov_pos, p, sizeof b->ov_pos);
+            }
           }
   }
   /* grain-wall: the grains in the cells that a triangle's box (grown by rmax) touches */
@@ -1139,7 +1154,10 @@ double dem_bridge_max_overlap(DemBridge *b) {
               double d2 = point_tri_dist2(b->pos + 3 * j, p0, p1, p2);
               if (d2 >= rad[j] * rad[j]) continue;
               double ov = (rad[j] - sqrt(d2)) / (2 * rad[j]);
-              if (ov > worst) worst = ov;
+              if (ov > worst) {
+                worst = ov, b->ov_mesh = im;
+                memcpy(b->ov_pos, b->pos + 3 * j, sizeof b->ov_pos);
+              }
             }
     }
   }

@@ -790,9 +790,8 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
     double r_rel = dist2(g->xw_cur, g->x_try, n3) / scale;
     SA_CHECK(dem_iqn_update(g->iqn, g->x_try, g->xw_cur, g->x_next));
     res = dist2(g->x_next, g->x_try, n3) / scale;
-    double ang = NAN;
-    if (sa_log_get_level() >= SA_LOG_DEBUG &&
-        fem_bending_angle(g->m, g->sc->coupling.tip_surface, fem_solver_positions(g->s), &ang))
+    double ang = NAN; /* cheap (a sum over the tip face), so always: the log file is DEBUG */
+    if (fem_bending_angle(g->m, g->sc->coupling.tip_surface, fem_solver_positions(g->s), &ang))
       sa_error_clear();
     sa_log(SA_LOG_DEBUG, "dem", "coupling iteration %d: update %.3g, residual %.3g of the "
            "grains' wall displacement (%.3g nm rms; this step %.3g nm rms), %d quasi-Newton "
@@ -863,11 +862,16 @@ static int step_checks(Run *g, int step, double s_disp, int full) {
              "the piston clearance) or were ejected (soften less / slow the piston)",
              g->n_grains - n, g->n_grains, s_disp * 1e3);
   g->overlap = dem_bridge_max_overlap(g->b);
+  double ov_at[3];
+  const char *ov_with = dem_bridge_overlap_site(g->b, ov_at);
+  sa_log(SA_LOG_DEBUG, "dem", "largest overlap %.4g of the diameter (%s, grain at (%.2f, %.2f, "
+         "%.2f) mm)", g->overlap, ov_with, ov_at[0] * 1e3, ov_at[1] * 1e3, ov_at[2] * 1e3);
   SA_REQUIRE(isfinite(g->overlap) && g->overlap <= sc->dem.max_overlap, SA_ERR_DOMAIN,
              "largest contact overlap %.3g of the diameter exceeds [dem] max_overlap = %g at "
-             "piston displacement %.3f mm: the grains are too soft for this load (lower "
-             "[grains] softening) or the piston too fast", g->overlap, sc->dem.max_overlap,
-             s_disp * 1e3);
+             "piston displacement %.3f mm (%s, grain at (%.2f, %.2f, %.2f) mm): the grains are "
+             "too soft for this load (lower [grains] softening) or the piston too fast",
+             g->overlap, sc->dem.max_overlap, s_disp * 1e3, ov_with, ov_at[0] * 1e3,
+             ov_at[1] * 1e3, ov_at[2] * 1e3);
   /* force balance of the bed: the forces it puts on the walls carry its weight and change its
    * momentum (Newton's second law over the step; a jolted or fast bed is no failure here, the
    * inertial number reports it) */
@@ -1252,6 +1256,8 @@ static int stroke(Run *g, double *s_reached) {
                    ? fmin((g->next_step - N_PRELOAD) * cc->interval, sc->piston.stroke)
                    : 0;
   int rc = 0, at_boundary = 0;
+  /* the poured bed, before the preload: studies of the preload resume from it */
+  if (g->next_step == 0 && cc->checkpoint_poured && !cc->resume) rc = write_checkpoint(g);
   for (int j = g->next_step; j < ntot && !rc; j++) {
     if (sa_interrupted()) {
       at_boundary = 1;

@@ -106,6 +106,9 @@ static const SaParam coupling_params[] = {
      "coupling steps between checkpoints in <out>/checkpoint (0 = only when interrupted); a "
      "run stopped by a signal between coupling steps writes one; inside a step it stops after "
      "the current DEM chunk or Newton iteration and keeps the last one"},
+    {"checkpoint_poured", SA_PARAM_BOOL, P(checkpoint_poured), "-", "0", 0, 0, 0, NULL,
+     "also write a checkpoint of the poured and settled bed, piston on it, before the preload "
+     "(studies resume variants of the preload from one bed)"},
     {"resume", SA_PARAM_BOOL, P(resume), "-", "0", 0, 0, 0, NULL,
      "continue from <out>/checkpoint of an earlier run of the same case into the same --out "
      "folder, instead of pouring (same result as a run that was never stopped)"},

@@ -49,7 +49,7 @@ with tempfile.TemporaryDirectory() as tmp:
     args = [exe, "run", case, "--out", out, "--quiet", "--set", "grains.softening=1000",
             "--set", "grains.diameter=3e-3", "--set", "piston.stroke=7.5e-4",
             "--set", "coupling.vtk_every=0", "--set", "run.plots=false",
-            "--set", "coupling.checkpoint_every=6"]
+            "--set", "coupling.checkpoint_every=6", "--set", "coupling.checkpoint_poured=true"]
     r = subprocess.run(args, capture_output=True, text=True, timeout=1500)
     if r.returncode != 0:
         print("coupled run failed:", r.returncode, r.stderr[-2000:])
@@ -73,6 +73,10 @@ with tempfile.TemporaryDirectory() as tmp:
                      + ", ".join(r["piston_force"] for r in rows))
     if abs(float(rows[-1]["piston_displacement"]) - 7.5e-4) > 1e-9:
         fails.append("stroke not reached")
+    # checkpoint_poured: the poured bed was checkpointed before the preload (the step-6
+    # checkpoint replaced it; the resume below starts from that one)
+    if "checkpoint after coupling step 0 " not in open(os.path.join(out, "softact.log")).read():
+        fails.append("checkpoint_poured: no checkpoint of the poured bed in softact.log")
     # resume from the checkpoint in a copy of the results: same rows, bit for bit
     out2 = os.path.join(tmp, "resumed")
     shutil.copytree(out, out2)
