@@ -788,16 +788,23 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
     double scale = fmax(dist2(g->xw_cur, g->x_hang, n3), 1e-9 * sqrt((double)g->nv));
     double step_motion = dist2(g->xw_cur, g->x_start, n3);
     double r_rel = dist2(g->xw_cur, g->x_try, n3) / scale;
+    /* the largest nodal mismatch between the wall the DEM saw and the FEM's answer */
+    double m_max = 0;
+    for (int v = 0; v < g->nv; v++) {
+      double e2 = 0;
+      for (int d = 0; d < 3; d++) e2 += pow(g->xw_cur[3 * v + d] - g->x_try[3 * v + d], 2);
+      m_max = fmax(m_max, sqrt(e2));
+    }
     SA_CHECK(dem_iqn_update(g->iqn, g->x_try, g->xw_cur, g->x_next));
     res = dist2(g->x_next, g->x_try, n3) / scale;
     double ang = NAN; /* cheap (a sum over the tip face), so always: the log file is DEBUG */
     if (fem_bending_angle(g->m, g->sc->coupling.tip_surface, fem_solver_positions(g->s), &ang))
       sa_error_clear();
     sa_log(SA_LOG_DEBUG, "dem", "coupling iteration %d: update %.3g, residual %.3g of the "
-           "grains' wall displacement (%.3g nm rms; this step %.3g nm rms), %d quasi-Newton "
-           "columns, %d Newton, angle %.4f deg", it + 1, res, r_rel,
+           "grains' wall displacement (%.3g nm rms; this step %.3g nm rms; largest %.3g um), %d "
+           "quasi-Newton columns, %d Newton, angle %.4f deg", it + 1, res, r_rel,
            1e9 * scale / sqrt((double)g->nv), 1e9 * step_motion / sqrt((double)g->nv),
-           dem_iqn_columns(g->iqn), g->newton, ang);
+           1e6 * m_max, dem_iqn_columns(g->iqn), g->newton, ang);
     r_last = r_rel;
     if (it + 1 >= cc->iterations) break;
     if (res <= cc->iteration_tol) {
