@@ -140,7 +140,7 @@ int dem_bridge_particle_ids(DemBridge *b, int *id);
  * diameter [-] (grain-grain: from positions; grain-wall: from the meshes). */
 double dem_bridge_max_overlap(DemBridge *b);
 /* Where the last dem_bridge_max_overlap found its largest overlap: returns the wall mesh's
- * name, or "two grains"; pos [out] the grain's centre [m]. */
+ * LIGGGHTS fix id ("mesh_<name>"), or "two grains"; pos [out] the grain's centre [m]. */
 const char *dem_bridge_overlap_site(const DemBridge *b, double pos[3]);
 /* Total kinetic energy of the grains [J]. */
 double dem_bridge_kinetic_energy(DemBridge *b);
