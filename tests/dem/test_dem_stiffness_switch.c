@@ -52,6 +52,12 @@ int main(void) {
     if (getenv("DEM_TEST_VERBOSE"))
       printf("E = %g Pa: overlap/d %.6g, Hertz %.6g\n", E[k], got, ref);
     t_close(k ? "overlap after the switch" : "overlap before the switch", got, ref, 0, 0.01);
+    /* the overlap check names its contact: the plate, at the grain's centre */
+    double at[3], x[3];
+    const char *site = dem_bridge_overlap_site(b, at);
+    T_CHECK(dem_bridge_particles(b, x, NULL, NULL, NULL));
+    t_true("the largest overlap is named as the plate's", strcmp(site, "mesh_plate") == 0);
+    t_close("the largest overlap's grain position (z)", at[2], x[2], 1e-15, 0);
     /* the wall force read back carries the weight (the stress module survives the switch) */
     double f[6];
     T_CHECK(dem_bridge_mesh_forces(b, id, f));
