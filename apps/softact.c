@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fem_blas.h"
 #include "sa_error.h"
 #include "sa_log.h"
 #include "sa_module.h"
@@ -183,6 +184,9 @@ done:
 }
 
 int main(int argc, char **argv) {
+  /* OpenBLAS' generic kernels on a CPU it does not recognise: re-run with the right ones
+   * (fem_blas.h; before anything else, since the process image is replaced) */
+  fem_blas_select_kernels(argv);
   /* Handlers first: a signal that arrives while the case loads (start-up takes ~0.25 s) must
    * stop the run cleanly, not kill the process with the default action. */
   sa_signals_install();

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fem_blas.h"
 #include "fem_element.h"
 #include "fem_solver_priv.h"
 #include "sa_error.h"
@@ -158,9 +159,11 @@ int fem_solver_setup(FemSolver *s) {
   s->V = s->ct.V_c = s->ct.V_t = s->ct.V_last = s->ct.V_prev = s->ct.V_goal = s->V_ref;
   sa_log(SA_LOG_INFO, "fem",
          "setup: %d nodes, %d %s elements, %d free dofs, nnz(K) %ld, nnz(L) %.3g (fill %.1f), "
-         "%d threads (%d interface elements), %d pressure faces, V0 = %.6g m^3, symbolic %.3f s",
+         "%d threads (%d interface elements; OpenBLAS %s kernels), %d pressure faces, V0 = "
+         "%.6g m^3, symbolic %.3f s",
          s->N, ne, m->etype == FEM_TET10 ? "tet10" : "tet4", nf, s->dm.nnz, li.nnz_l,
-         li.nnz_l / (0.5 * (s->dm.nnz + nf)), s->prm.threads, s->st.n_interface, s->as.npf,
+         li.nnz_l / (0.5 * (s->dm.nnz + nf)), s->prm.threads, s->st.n_interface, fem_blas_kernels(),
+         s->as.npf,
          s->V_ref, s->st.t_symbolic);
   return 0;
 }

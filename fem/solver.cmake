@@ -8,6 +8,7 @@ find_package(OpenBLAS REQUIRED)
 find_package(OpenMP COMPONENTS C)
 set(_sa_fem_sources
   ${CMAKE_CURRENT_LIST_DIR}/fem_linsolve.c
+  ${CMAKE_CURRENT_LIST_DIR}/fem_blas.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_solver.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_dofmap.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_assemble.c

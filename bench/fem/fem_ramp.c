@@ -24,6 +24,7 @@
 #include <sys/resource.h>
 
 #include "fem.h"
+#include "fem_blas.h"
 #include "sa_error.h"
 #include "sa_log.h"
 
@@ -99,6 +100,7 @@ static const char *arg(int argc, char **argv, const char *key, const char *def) 
 }
 
 int main(int argc, char **argv) {
+  fem_blas_select_kernels(argv); /* OPENBLAS_CORETYPE=Prescott measures the generic kernels */
   sa_log_set_level(getenv("FEM_RAMP_DEBUG") ? SA_LOG_DEBUG : SA_LOG_WARN);
   double h = atof(arg(argc, argv, "h", "4e-3")), hb = atof(arg(argc, argv, "hb", "2e-3")),
          hr = atof(arg(argc, argv, "hr", "2e-3")), p_max = atof(arg(argc, argv, "p_max", "120e3"));
@@ -181,7 +183,7 @@ int main(int argc, char **argv) {
          nf1, tf0, tf1);
   double cref = want_ref ? 0.5 * (tc0 + tc1) : NAN;
   printf("ref_factor_cpu = %.4f (%.4f before, %.4f after)\n", cref, tc0, tc1);
-  printf("ratio = %.1f\nratio_cpu = %.1f\n", wall / tref, cpu / cref);
+  printf("ratio = %.1f\nratio_cpu = %.1f\nblas_kernels = %s\n", wall / tref, cpu / cref, fem_blas_kernels());
   for (int j = 1; j < k && j <= n_out; j++) {
     double p = p_max * j / n_out;
     if (fabs(fmod(p, 30e3)) < 1e-6) printf("angle_%.0f = %.6f\n", 1e-3 * p, ang[j]);
