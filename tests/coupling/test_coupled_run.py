@@ -13,7 +13,9 @@ path, so any state left out of the checkpoint shows). References independent of 
  - the weight: grains x (pi d^3 / 6) x density x g from summary.ini's grain count;
  - the piston force grows with the piston displacement (the bed is compressed);
  - no grain lost (count unchanged), largest overlap below 5 % of the diameter, packing fraction
-   of a poured monodisperse bed between 0.45 and 0.64 (random loose to random close packing)."""
+   of a poured monodisperse bed between 0.45 and 0.64 (random loose to random close packing).
+Then the same checkpoint resumed with an overlap limit no bed meets: the coupling refuses every
+pass but the last and the run check stops the run with its named diagnosis."""
 import csv, math, os, shutil, subprocess, sys, tempfile
 
 
@@ -115,6 +117,24 @@ with tempfile.TemporaryDirectory() as tmp:
             fails.append(f"staggered run: status {st.get('status')}, iterated {st.get('iterated_steps')}")
         rows3 = list(csv.DictReader(open(os.path.join(out3, "bending.csv")).readlines()[1:]))
         fails += balance_fails(rows3, W, "staggered: ")
+    # a pass whose overlap exceeds [dem] max_overlap is never accepted while passes remain
+    # (the FEM's wall is tried next); when none are left the run check stops the run with its
+    # diagnosis. With a limit below any loaded bed's overlap (1e-6 of d: Hertz overlaps of the
+    # bed's weight alone are ~1e-4 of d) and 3 passes, exactly two passes are refused
+    out4 = os.path.join(tmp, "overlap_rule")
+    shutil.copytree(out, out4)
+    os.remove(os.path.join(out4, "bending.csv"))
+    args4 = [a if a != out else out4 for a in args] + [
+        "--set", "coupling.resume=true", "--set", "coupling.iterations=3",
+        "--set", "dem.max_overlap=1e-6"]
+    r = subprocess.run(args4, capture_output=True, text=True, timeout=1500)
+    # the file logs every level; a resumed run may append to it: count the new lines only
+    mark = "not accepted, the FEM's wall is tried next"
+    refused = (open(os.path.join(out4, "softact.log")).read().count(mark)
+               - open(os.path.join(out, "softact.log")).read().count(mark))
+    if r.returncode == 0 or refused != 2 or "exceeds [dem] max_overlap" not in r.stderr:
+        fails.append(f"overlap rule: exit {r.returncode}, {refused} passes refused (2 expected), "
+                     f"stderr tail: {r.stderr[-600:]}")
     for f in fails:
         print(f)
     sys.exit(1 if fails else 0)
