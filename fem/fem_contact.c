@@ -54,6 +54,9 @@ struct FemContact {
   int *sv_f;      /* and anc_f */
   FemContactStats sv_st;
   double sv_pp[3];
+  double *lamT, *lamT_c, *lamT_t; /* tangential traction multipliers (3 per slave; 0: pure
+                                   * penalty stick), at the state being evaluated / committed /
+                                   * target, ramped like lam */
   double *lam_c, *lam_t; /* committed / target multipliers: fem_contact_augment sets the target,
                           * the next solve ramps from one to the other with its load factor (so
                           * a cut substep takes a smaller part of the change) */
@@ -77,6 +80,12 @@ static void cross3(const double *a, const double *b, double *c) {
   c[0] = a[1] * b[2] - a[2] * b[1];
   c[1] = a[2] * b[0] - a[0] * b[2];
   c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* p = (I - n n) l: the part of l in the plane normal to the unit vector n. */
+static void tangential_part(const double *l, const double n[3], double p[3]) {
+  double s = dot3(n, l);
+  for (int i = 0; i < 3; i++) p[i] = l[i] - s * n[i];
 }
 
 /* The flat (sub-)triangles of a face: tri3 itself, tri6 its 4 corner/mid-node triangles
@@ -153,6 +162,9 @@ int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactP
   SA_CALLOC(c->anc_bm, 3 * c->ns);
   SA_CALLOC(c->anc_fm, c->ns);
   SA_CALLOC(c->lam_t, c->ns);
+  SA_CALLOC(c->lamT, 3 * c->ns);
+  SA_CALLOC(c->lamT_c, 3 * c->ns);
+  SA_CALLOC(c->lamT_t, 3 * c->ns);
   for (int k = 0; k < c->ns; k++) {
     c->anc_f[k] = -1;
     memcpy(c->anc + 3 * k, mesh->xyz + 3 * c->snode[k], 3 * sizeof(double));
@@ -239,11 +251,14 @@ int fem_contact_set_cylinder(FemContact *c, const double p[3], const double a[3]
 
 /* Returns 1 when in contact (t_N = lam - eps_N g >= 0, or frozen), 0 otherwise. Inputs: g, n,
  * N (NULL = 0), x, anchor a, area A, the node's multiplier lam (0: pure penalty, in contact
- * when g <= 0); slip_in: -1 decide, 0/1 frozen (finite differences). Outputs: F force of the
- * target on the node, dF = dF/dx (NULL: not wanted), tn, tt (traction), *slip. */
-static int node_law(const FemContactParams *p, double A, double g, double lam, const double n[3],
-                    const double *N, const double x[3], const double a[3], int frozen, int slip_in,
-                    double F[3], double *dF, double *tn_out, double tt[3], int *slip) {
+ * when g <= 0) and tangential multiplier lT (3; the stick trial traction is P lT - eps_T d,
+ * P = I - n n: 0 is the pure penalty stick); slip_in: -1 decide, 0/1 frozen (finite
+ * differences). Outputs: F force of the target on the node, dF = dF/dx (NULL: not wanted), tn,
+ * tt (traction), *slip. */
+static int node_law(const FemContactParams *p, double A, double g, double lam, const double *lT,
+                    const double n[3], const double *N, const double x[3], const double a[3],
+                    int frozen, int slip_in, double F[3], double *dF, double *tn_out, double tt[3],
+                    int *slip) {
   /* g = 0 with lam = 0 is active (t_N = -0): touching bodies get the contact stiffness */
   if (lam - p->penalty * g < 0 && !frozen) {
     memset(F, 0, 3 * sizeof *F);
@@ -258,15 +273,18 @@ static int node_law(const FemContactParams *p, double A, double g, double lam, c
   for (int i = 0; i < 3; i++) w[i] = x[i] - a[i];
   double s = dot3(n, w);
   for (int i = 0; i < 3; i++) d[i] = w[i] - s * n[i];
-  double dn = sqrt(dot3(d, d));
   /* mu = 0: no tangential force at all (the stick set is the single point d = 0, where a
    * stick stiffness would not be the derivative of the zero force around it) */
   /* a slip vector at round-off level (e.g. the reference state, t_N = 0) has no direction:
    * stick */
   double dtiny = 1e-13 * (fabs(x[0]) + fabs(x[1]) + fabs(x[2]) + fabs(a[0]) + fabs(a[1]) + fabs(a[2]));
-  int sl = mu == 0 ? 1 : slip_in >= 0 ? slip_in : (eT * dn > mu * tn && dn > dtiny);
-  if (sl && dn == 0 && mu > 0) sl = 0; /* frozen slip with no slip vector: nothing to orient */
-  for (int i = 0; i < 3; i++) t[i] = sl ? (mu > 0 ? -mu * tn * d[i] / dn : 0) : -eT * d[i];
+  /* stick trial traction tr = P lT - eps_T d (with lT = 0: -eps_T d, |tr| = eps_T |d|) */
+  double tr[3], nl = lT ? dot3(n, lT) : 0;
+  for (int i = 0; i < 3; i++) tr[i] = (lT ? lT[i] - nl * n[i] : 0) - eT * d[i];
+  double trn = sqrt(dot3(tr, tr));
+  int sl = mu == 0 ? 1 : slip_in >= 0 ? slip_in : (trn > mu * tn && trn > eT * dtiny);
+  if (sl && trn == 0 && mu > 0) sl = 0; /* frozen slip with no slip vector: nothing to orient */
+  for (int i = 0; i < 3; i++) t[i] = sl ? (mu > 0 ? mu * tn * tr[i] / trn : 0) : tr[i];
   for (int i = 0; i < 3; i++) F[i] = A * (tn * n[i] + t[i]);
   *tn_out = tn;
   if (tt) memcpy(tt, t, 3 * sizeof *t);
@@ -279,15 +297,22 @@ static int node_law(const FemContactParams *p, double A, double g, double lam, c
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++)
       D[3 * i + j] = (i == j) - (N ? s * N[3 * i + j] : 0) - n[i] * (n[j] + Ntw[j]);
+  /* dtr/dx = -eps_T D + d(P lT)/dx, d(P lT)_i/dx_j = -N_ij (n.lT) - n_i (lT.N_:j) */
+  double dtr[9], Ntl[3] = {0, 0, 0};
+  if (N && lT)
+    for (int j = 0; j < 3; j++) Ntl[j] = N[0 * 3 + j] * lT[0] + N[1 * 3 + j] * lT[1] + N[2 * 3 + j] * lT[2];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      dtr[3 * i + j] = -eT * D[3 * i + j] - (N ? nl * N[3 * i + j] + n[i] * Ntl[j] : 0);
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
       double dt;
-      if (!sl) dt = -eT * D[3 * i + j];
+      if (!sl) dt = dtr[3 * i + j];
       else if (mu == 0) dt = 0;
-      else {
+      else { /* t = mu t_N tr / |tr| */
         double pd = 0;
-        for (int k = 0; k < 3; k++) pd += ((i == k) - d[i] * d[k] / (dn * dn)) * D[3 * k + j];
-        dt = -mu * (d[i] / dn * dtn[j] + tn / dn * pd);
+        for (int k = 0; k < 3; k++) pd += ((i == k) - tr[i] * tr[k] / (trn * trn)) * dtr[3 * k + j];
+        dt = mu * (tr[i] / trn * dtn[j] + tn / trn * pd);
       }
       dF[3 * i + j] = A * (n[i] * dtn[j] + (N ? tn * N[3 * i + j] : 0) + dt);
     }
@@ -454,8 +479,8 @@ static int mesh_pair(const FemContact *c, int k, const double *xs, const double 
   g = dot3(w, n);
   /* smooth normals: the slip is the motion of the closest point on the master (the gap vector
    * xs - xc is along the facet normal, not along n, so x - a would carry a spurious slip) */
-  int act = node_law(&c->prm, c->sarea[k], g, c->lam[k], n, NULL, vn3 ? xc : xs, a, frozen, slip_in, Fs,
-                     NULL, tn, tt, slip);
+  int act = node_law(&c->prm, c->sarea[k], g, c->lam[k], c->lamT + 3 * k, n, NULL, vn3 ? xc : xs, a,
+                     frozen, slip_in, Fs, NULL, tn, tt, slip);
   for (int j = 0; j < 3; j++)
     for (int i = 0; i < 3; i++) Fm[3 * j + i] = -bc[j] * Fs[i];
   if (g_out) *g_out = g;
@@ -533,6 +558,7 @@ static void vertex_normals(FemContact *c, const double *x) {
 /* Multipliers at load factor f of the solve: from the committed to the target ones. */
 static void multipliers_at(FemContact *c, double f) {
   for (int k = 0; k < c->ns; k++) c->lam[k] = c->lam_c[k] + f * (c->lam_t[k] - c->lam_c[k]);
+  for (int k = 0; k < 3 * c->ns; k++) c->lamT[k] = c->lamT_c[k] + f * (c->lamT_t[k] - c->lamT_c[k]);
 }
 
 static int contact_eval(void *ctx, FemAsmView *v) {
@@ -550,8 +576,8 @@ static int contact_eval(void *ctx, FemAsmView *v) {
     int slip;
     if (c->target == TGT_PLANE || c->target == TGT_CYLINDER) {
       if (!rigid_geom(c, xs, &g, n, N)) continue;
-      if (!node_law(&c->prm, c->sarea[k], g, c->lam[k], n, N, xs, c->anc + 3 * k, 0,
-                    -1, F, wantK ? dF : NULL, &tn, NULL, &slip))
+      if (!node_law(&c->prm, c->sarea[k], g, c->lam[k], c->lamT + 3 * k, n, N, xs, c->anc + 3 * k,
+                    0, -1, F, wantK ? dF : NULL, &tn, NULL, &slip))
         continue;
       if (c->prm.max_penetration > 0 && -g > c->prm.max_penetration) {
         sa_log(SA_LOG_DEBUG, "fem", "contact '%s': node %d penetrates %.3g m > %.3g m", c->slave,
@@ -633,7 +659,10 @@ static void contact_commit(void *ctx, const double *x) {
   {
     double f = c->s ? fem_solver_load_factor(c->s) : 0.0;
     multipliers_at(c, f);
-    if (f >= 1.0 - 1e-12) memcpy(c->lam_c, c->lam_t, sizeof(double) * (size_t)c->ns);
+    if (f >= 1.0 - 1e-12) {
+      memcpy(c->lam_c, c->lam_t, sizeof(double) * (size_t)c->ns);
+      memcpy(c->lamT_c, c->lamT_t, sizeof(double) * 3 * (size_t)c->ns);
+    }
   }
   FemContactStats st = {0};
   double tsum[3] = {0, 0, 0};
@@ -644,9 +673,14 @@ static void contact_commit(void *ctx, const double *x) {
     int slip = 0, act = 0;
     if (c->target == TGT_PLANE || c->target == TGT_CYLINDER) {
       if (rigid_geom(c, xs, &g, n, N)) {
-        act = node_law(&c->prm, c->sarea[k], g, c->lam[k], n, N, xs, c->anc + 3 * k, 0,
-                       -1, F, NULL, &tn, tt, &slip);
-        for (int i = 0; i < 3; i++) c->anc[3 * k + i] = xs[i] - g * n[i] + tt[i] / c->prm.penalty_tangent;
+        act = node_law(&c->prm, c->sarea[k], g, c->lam[k], c->lamT + 3 * k, n, N, xs,
+                       c->anc + 3 * k, 0, -1, F, NULL, &tn, tt, &slip);
+        /* the anchor that makes the stick trial equal the traction carried: P lT - eps_T d =
+         * t_T, d = x_c - a (with lT = 0: a = x_c + t_T / eps_T) */
+        double pl[3];
+        tangential_part(c->lamT + 3 * k, n, pl);
+        for (int i = 0; i < 3; i++)
+          c->anc[3 * k + i] = xs[i] - g * n[i] + (tt[i] - pl[i]) / c->prm.penalty_tangent;
       } else {
         memcpy(c->anc + 3 * k, xs, 3 * sizeof(double));
       }
@@ -663,12 +697,13 @@ static void contact_commit(void *ctx, const double *x) {
          * barycentric coordinates */
         const double *P0 = x + 3 * c->tri[3 * t], *P1 = x + 3 * c->tri[3 * t + 1],
                      *P2 = x + 3 * c->tri[3 * t + 2];
-        double a[3], e1[3], e2[3], w[3], bq[3];
+        double a[3], e1[3], e2[3], w[3], bq[3], pl[3];
         if (c->vn) closest_on_tri(xs, P0, P1, P2, bq);
+        tangential_part(c->lamT + 3 * k, n, pl);
         for (int i = 0; i < 3; i++) {
           /* smooth normals: the anchor follows the closest point (see mesh_pair) */
           double base = c->vn ? bq[0] * P0[i] + bq[1] * P1[i] + bq[2] * P2[i] : xs[i] - g * n[i];
-          a[i] = base + (act ? tt[i] / c->prm.penalty_tangent : 0);
+          a[i] = base + (act ? (tt[i] - pl[i]) / c->prm.penalty_tangent : 0);
           e1[i] = P1[i] - P0[i];
           e2[i] = P2[i] - P0[i];
           w[i] = a[i] - P0[i];
@@ -699,6 +734,10 @@ static void contact_commit(void *ctx, const double *x) {
       tsum[i] += c->sarea[k] * tt[i];
     }
     st.normal_force += c->sarea[k] * tn;
+    double pl[3], e[3];
+    tangential_part(c->lamT + 3 * k, n, pl);
+    for (int i = 0; i < 3; i++) e[i] = tt[i] - pl[i];
+    st.tangent_slack += c->sarea[k] * sqrt(dot3(e, e)) / c->prm.penalty_tangent;
   }
   st.tangent_force = sqrt(dot3(tsum, tsum));
   c->st = st;
@@ -761,6 +800,9 @@ int fem_contact_augment(FemContact *c, double *max_penetration, double *overlap_
     }
     /* an unevaluated node (outside a rigid target, no master face) has g = +inf: lam = 0 */
     c->lam_t[k] = fmax(0.0, c->lam_c[k] - c->prm.penalty * g);
+    /* tangential: the traction the node carried (0 off contact or frictionless), so that the
+     * next solve needs no elastic slip from the step's stick point to carry it */
+    for (int i = 0; i < 3; i++) c->lamT_t[3 * k + i] = c->tt_c[3 * k + i];
   }
   if (max_penetration) *max_penetration = pen;
   if (overlap_volume) *overlap_volume = vol;
@@ -772,6 +814,8 @@ static void cancel_augment(FemContact *c) {
   size_t n = sizeof(double) * (size_t)c->ns;
   memcpy(c->lam_t, c->lam_c, n);
   memcpy(c->lam, c->lam_c, n);
+  memcpy(c->lamT_t, c->lamT_c, 3 * n);
+  memcpy(c->lamT, c->lamT_c, 3 * n);
 }
 
 /* The stick anchors (anc, anc_b, anc_f) of one set of arrays into another. */
@@ -782,15 +826,15 @@ static void copy_anchors(const FemContact *c, double *anc, double *anc_b, int *a
   memcpy(anc_f, from_f, sizeof(int) * (size_t)c->ns);
 }
 
-/* The saved state: anchors, then the read-back gap_c, tn_c, tt_c, nrm_c and lam_c. */
-enum { SV_PER = 3 + 3 + 1 + 1 + 3 + 3 + 1 };
+/* The saved state: anchors, then the read-back gap_c, tn_c, tt_c, nrm_c, lam_c and lamT_c. */
+enum { SV_PER = 3 + 3 + 1 + 1 + 3 + 3 + 1 + 3 };
 static void sv_copy(FemContact *c, int save) {
-  double *arr[] = {c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->lam_c};
-  int w[] = {1, 1, 3, 3, 1};
+  double *arr[] = {c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->lam_c, c->lamT_c};
+  int w[] = {1, 1, 3, 3, 1, 3};
   double *sb = c->sv + 3 * (size_t)c->ns, *p = c->sv + 6 * (size_t)c->ns;
   if (save) copy_anchors(c, c->sv, sb, c->sv_f, c->anc, c->anc_b, c->anc_f);
   else copy_anchors(c, c->anc, c->anc_b, c->anc_f, c->sv, sb, c->sv_f);
-  for (int a = 0; a < 5; a++) {
+  for (int a = 0; a < 6; a++) {
     size_t n = sizeof(double) * (size_t)w[a] * (size_t)c->ns;
     if (save) memcpy(p, arr[a], n);
     else memcpy(arr[a], p, n);
@@ -847,7 +891,8 @@ void fem_contact_destroy(FemContact **cp) {
   FemContact *c = *cp;
   void *p[] = {c->last_tri, c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
                c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->vn, c->lam,
-               c->lam_c, c->lam_t, c->anc_m, c->anc_bm, c->anc_fm, c->sv, c->sv_f};
+               c->lam_c, c->lam_t, c->lamT, c->lamT_c, c->lamT_t, c->anc_m, c->anc_bm, c->anc_fm,
+               c->sv, c->sv_f};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
   free(c);
   *cp = NULL;

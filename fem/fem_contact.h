@@ -90,6 +90,9 @@ typedef struct {
   double force[3];        /* total force the target exerts on the slave [N] */
   double normal_force;    /* sum of A t_N [N] */
   double tangent_force;   /* |sum of A t_T| [N] */
+  double tangent_slack;   /* sum of A |t_T - P lT| / eps_T [m^3]: the tangential motion from the
+                           * step's stick points that the penalty still needs to carry t_T (the
+                           * tangential Uzawa residual; 0 once the multipliers carry it) */
 } FemContactStats;
 
 /* Augmented Lagrangian (Uzawa; Wriggers 2006 sec. 6.3, Laursen 2002 sec. 5.3): each slave
@@ -99,9 +102,12 @@ typedef struct {
  * and repeating drives the gaps to zero with a penalty that only sets the rate (the error
  * contracts by about K / (K + eps_N) per update, K the structure's stiffness per area), not the
  * answer. Returns the largest penetration [m] and the overlap volume sum A <-g> [m^3] of the
- * committed state BEFORE the update (the caller's stopping test). The tangential law stays a
- * penalty regularised stick (its elastic slip t_T / eps_T), its Coulomb limit mu t_N uses the
- * augmented t_N. The update is the next solve's target: that solve moves the multipliers from
+ * committed state BEFORE the update (the caller's stopping test; with friction also
+ * FemContactStats.tangent_slack). With friction the tangential traction is augmented the same
+ * way: each node's multiplier lT (3) becomes the traction t_T it carried, the stick trial is
+ * P lT - eps_T d (d the tangential motion from the stick point, P = I - n n), so repeated
+ * updates drive the stick nodes' elastic slip t_T / eps_T to zero (exact stick); the Coulomb
+ * limit mu t_N uses the augmented t_N. The update is the next solve's target: that solve moves the multipliers from
  * the committed values to it with its load factor (like a moving plane), so the solver's
  * substep cuts take a smaller part of a large change; a completed solve commits them.
  * Multipliers start at 0 (pure penalty) and are not part of the solver's snapshot: call

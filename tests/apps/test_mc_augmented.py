@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """The Mohr-Coulomb actuator scene with the augmented Lagrangian ([mc_bending] augment): its
-answer must not depend on the contact penalty (docs/contact.md, "Augmented Lagrangian").
+answer must not depend on the contact penalty (docs/contact.md, "Augmented Lagrangian"),
+frictionless and (since 2026-12-06, tangential multipliers and path-consistent updates) with
+the scene's friction.
 
 Reference: the exact-contact limit, which penalty-only contact reaches only as the penalty grows
 without bound. The fill is frictionless here, so that limit is unique: with friction the stick
@@ -38,33 +40,49 @@ def summary(path):
     return d
 
 
+# With friction (the scene's wall and barrel coefficients) the tangential multipliers are
+# augmented too and every augmented solve of a step starts again from the step's material
+# history and stick points (one backward-Euler step, docs/contact.md). Measured 2026-12-06:
+# 2.4 / 3.4 / 5.2 % apart (before: 12 / 25 / 35 %). The angle's bound is 10 %: the settled
+# state (frictionless, augmented incrementally from the first penalty-soft solve, whose plastic
+# flow stays) still differs by 1.9 % in angle between the penalties, and the 25 um change is 8 %
+# of that angle.
+FRICTION = [k for k in BASE if not k.startswith("fill.friction")]
+BOUNDS = {"": {"force": 0.05, "dV": 0.05, "dangle": 0.05},
+          "f": {"force": 0.05, "dV": 0.05, "dangle": 0.10}}
+
 fails, res = [], {}
 with tempfile.TemporaryDirectory() as tmp:
-    for alpha in ("1", "0.3"):
-        out = os.path.join(tmp, "a" + alpha)
+    for variant, alpha in (("", "1"), ("", "0.3"), ("f", "1"), ("f", "0.3")):
+        out = os.path.join(tmp, variant + "a" + alpha)
+        base = FRICTION if variant else BASE
         args = [exe, "run", case, "--out", out, "--quiet",
-                "--set", "mc_bending.penalty=" + alpha] + sum([["--set", s] for s in BASE], [])
+                "--set", "mc_bending.penalty=" + alpha] + sum([["--set", s] for s in base], [])
         r = subprocess.run(args, capture_output=True, text=True, timeout=600)
+        label = ("with friction, " if variant else "") + "penalty " + alpha
         if r.returncode != 0:
-            fails.append(f"penalty {alpha}: exit {r.returncode}: " + r.stderr[-800:])
+            fails.append(f"{label}: exit {r.returncode}: " + r.stderr[-800:])
             continue
         t = rows(os.path.join(out, "bending.csv"))
         s = summary(os.path.join(out, "summary.ini"))
         if int(s.get("augment_unconverged_steps", "1")) != 0:
-            fails.append(f"penalty {alpha}: augmentation did not converge in a step")
+            fails.append(f"{label}: augmentation did not converge in a step")
         for d in t[1:]:
             if abs(d["force_balance_error"]) > 1e-3:
-                fails.append(f"penalty {alpha}: force balance {d['force_balance_error']:.3g}")
-        res[alpha] = {"force": t[-1]["piston_force"], "dV": t[-1]["volume_change_rel"],
-                      "dangle": t[-1]["bending_angle"] - t[0]["bending_angle"],
-                      "solves": s.get("augment_solves")}
-if len(res) == 2:
-    a, b = res["1"], res["0.3"]
+                fails.append(f"{label}: force balance {d['force_balance_error']:.3g}")
+        res[variant + alpha] = {"force": t[-1]["piston_force"], "dV": t[-1]["volume_change_rel"],
+                                "dangle": t[-1]["bending_angle"] - t[0]["bending_angle"],
+                                "solves": s.get("augment_solves")}
+for variant in ("", "f"):
+    if variant + "1" not in res or variant + "0.3" not in res:
+        continue
+    a, b = res[variant + "1"], res[variant + "0.3"]
     for k in ("force", "dV", "dangle"):
-        rel = abs(a[k] - b[k]) / max(abs(a[k]), 1e-30)
-        if not rel <= 0.05:
-            fails.append(f"{k}: penalty 1 gives {a[k]:.6g}, penalty 0.3 {b[k]:.6g} "
-                         f"({100 * rel:.1f} % apart, bound 5 %)")
+        rel, bound = abs(a[k] - b[k]) / max(abs(a[k]), 1e-30), BOUNDS[variant][k]
+        if not rel <= bound:
+            fails.append(f"{'with friction, ' if variant else ''}{k}: penalty 1 gives {a[k]:.6g}, "
+                         f"penalty 0.3 {b[k]:.6g} ({100 * rel:.1f} % apart, bound "
+                         f"{100 * bound:.0f} %)")
     if os.environ.get("SA_TEST_VERBOSE"):
         print(res)
 for f in fails:
