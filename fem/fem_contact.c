@@ -48,6 +48,7 @@ struct FemContact {
   double *lam;    /* augmented Lagrangian: normal pressure multiplier per slave [Pa] (>= 0;
                    * 0 = pure penalty) at the state being evaluated */
   double *anc_m, *anc_bm; /* anchors at fem_contact_mark (anc, anc_b) */
+  double pp_m[3], *lam_m, *lamT_m; /* committed plane point and multipliers at the mark */
   int *anc_fm;             /* and anc_f */
   double *sv;    /* fem_contact_save: anc, anc_b, gap_c, tn_c, tt_c, nrm_c, lam_c (3+3+1+1+3+3+1
                   * per slave) */
@@ -165,6 +166,8 @@ int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactP
   SA_CALLOC(c->lamT, 3 * c->ns);
   SA_CALLOC(c->lamT_c, 3 * c->ns);
   SA_CALLOC(c->lamT_t, 3 * c->ns);
+  SA_CALLOC(c->lam_m, c->ns);
+  SA_CALLOC(c->lamT_m, 3 * c->ns);
   for (int k = 0; k < c->ns; k++) {
     c->anc_f[k] = -1;
     memcpy(c->anc + 3 * k, mesh->xyz + 3 * c->snode[k], 3 * sizeof(double));
@@ -868,6 +871,18 @@ int fem_contact_restore(FemContact *c) {
 
 void fem_contact_mark(FemContact *c) {
   copy_anchors(c, c->anc_m, c->anc_bm, c->anc_fm, c->anc, c->anc_b, c->anc_f);
+  memcpy(c->pp_m, c->pp_c, sizeof c->pp_m);
+  memcpy(c->lam_m, c->lam_c, sizeof(double) * (size_t)c->ns);
+  memcpy(c->lamT_m, c->lamT_c, sizeof(double) * 3 * (size_t)c->ns);
+}
+
+void fem_contact_rewind(FemContact *c) {
+  fem_contact_restore_mark(c);
+  memcpy(c->pp_c, c->pp_m, sizeof c->pp_c);
+  memcpy(c->lam_c, c->lam_m, sizeof(double) * (size_t)c->ns);
+  memcpy(c->lamT_c, c->lamT_m, sizeof(double) * 3 * (size_t)c->ns);
+  multipliers_at(c, 0.0);
+  if (c->target == TGT_PLANE) plane_at(c, 0.0);
 }
 
 void fem_contact_restore_mark(FemContact *c) {
@@ -891,7 +906,8 @@ void fem_contact_destroy(FemContact **cp) {
   FemContact *c = *cp;
   void *p[] = {c->last_tri, c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
                c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->vn, c->lam,
-               c->lam_c, c->lam_t, c->lamT, c->lamT_c, c->lamT_t, c->anc_m, c->anc_bm, c->anc_fm,
+               c->lam_c, c->lam_t, c->lamT, c->lamT_c, c->lamT_t, c->lam_m, c->lamT_m, c->anc_m,
+               c->anc_bm, c->anc_fm,
                c->sv, c->sv_f};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
   free(c);

@@ -121,6 +121,12 @@ int fem_contact_augment(FemContact *c, double *max_penetration, double *overlap_
  * final state, whatever the number of updates. */
 void fem_contact_mark(FemContact *c);
 void fem_contact_restore_mark(FemContact *c);
+/* Back to the state at fem_contact_mark: stick anchors, committed plane point and committed
+ * multipliers (normal and tangential), keeping the targets (plane target, multiplier targets
+ * set by fem_contact_augment). With the solver rolled back to the same moment
+ * (fem_solver_rollback), the next solve is the whole load step again, its ramp moving the
+ * plane and the multipliers from the step's start to the targets (cut-backs included). */
+void fem_contact_rewind(FemContact *c);
 /* The committed contact state (anchors, multipliers, read-back, stats, plane) in memory, to go
  * with fem_solver_snapshot / fem_solver_rollback: a failed solve commits its substeps into the
  * contact, so rolling back the solver alone would leave the contact at a state the solver no

@@ -376,9 +376,8 @@ typedef struct {
   double K_ratio, K_sh, K_sv, balance_f, balance_v;
   int newton, cuts, nyield, augments, augment_unconverged;
   FemSnapshot *snap; /* the state before an augmented solve */
-  double *hist_mark; /* the fill's material history at the step's start (mark_step) */
-  size_t hist_cap;
-  int hist_marked;
+  FemSnapshot *snap_step; /* the state at the step's start (mark_step) */
+  int step_marked;
   double t_start;
 } Mc;
 
@@ -635,54 +634,32 @@ static void accumulate(Mc *o) {
   o->cuts += rep.cuts;
 }
 
-/* The start of a load step: the contacts' stick anchors (fem_contact_mark) and the material
- * history of every element that has one. The augmented solves of the step start again from
- * both (restore_step), so the step stays one backward-Euler increment from this state whatever
- * the number of Uzawa updates: plastic flow and slip committed by the first, penalty-soft solve
- * would otherwise stay in the answer and make it depend on the penalty. */
+/* The start of a load step: the contacts' stick anchors, committed plane point and
+ * multipliers (fem_contact_mark) and the solver's state (positions, material history). With
+ * friction each augmented solve of the step is the whole step again from there (restore_step),
+ * so the step stays one backward-Euler increment whatever the number of Uzawa updates: the
+ * plastic flow and slip that the first, penalty-soft solve committed would otherwise stay in
+ * the answer and make it depend on the penalty (docs/contact.md). */
 static int mark_step(Mc *o) {
   for (int k = 0; k < NC; k++) fem_contact_mark(o->c[k]);
-  const FemMesh *m = o->m;
-  size_t n = 0;
-  for (int pass = 0; pass < 2; pass++) {
-    n = 0;
-    for (int e = 0; e < m->nelem; e++) {
-      int nh = 0;
-      const double *h = fem_solver_history(o->s, e, &nh);
-      if (!h || nh <= 0) continue;
-      size_t len = (size_t)fem_element_nqp(m->etype) * (size_t)nh;
-      if (pass) memcpy(o->hist_mark + n, h, len * sizeof *h);
-      n += len;
-    }
-    if (!pass && n > o->hist_cap) {
-      free(o->hist_mark);
-      o->hist_mark = malloc(n * sizeof *o->hist_mark);
-      SA_REQUIRE(o->hist_mark, SA_ERR_MEMORY, "material history mark (%zu values)", n);
-      o->hist_cap = n;
-    }
-  }
-  o->hist_marked = 1;
+  SA_CHECK(fem_solver_snapshot(o->s, &o->snap_step));
+  o->step_marked = 1;
   return 0;
 }
 
 static int restore_step(Mc *o) {
-  for (int k = 0; k < NC; k++) fem_contact_restore_mark(o->c[k]);
-  /* Frictionless, the material history is kept (the updates continue from the last solve):
-   * restarted from the step's history, the CI mesh's Newton fell into a 2-cycle after the
-   * second update (|R| 1.4e-3 <-> 3.9e-3, |du| 3.6 um) and the step failed, while the
-   * incremental path is penalty-independent to 1.3-3.5 % there (test mc_augmented). With
-   * friction the incremental path left the answer 12-47 % apart between penalties. */
+  /* Frictionless the updates continue from the last solve (only the stick anchors, unused,
+   * go back): restarted, the CI mesh's Newton fell into a 2-cycle after the second update and
+   * the step failed, while the incremental path is penalty-independent to 1.3-3.5 % there
+   * (test mc_augmented). With friction the incremental path left the answer 12-47 % apart
+   * between penalties. */
   const McScene *sc = o->sc;
-  if (!o->hist_marked || (sc->fill.friction_wall <= 0 && sc->fill.friction_piston <= 0)) return 0;
-  const FemMesh *m = o->m;
-  size_t n = 0;
-  for (int e = 0; e < m->nelem; e++) {
-    int nh = 0;
-    const double *h = fem_solver_history(o->s, e, &nh);
-    if (!h || nh <= 0) continue;
-    SA_CHECK(fem_solver_set_history(o->s, e, o->hist_mark + n));
-    n += (size_t)fem_element_nqp(m->etype) * (size_t)nh;
+  if (!o->step_marked || (sc->fill.friction_wall <= 0 && sc->fill.friction_piston <= 0)) {
+    for (int k = 0; k < NC; k++) fem_contact_restore_mark(o->c[k]);
+    return 0;
   }
+  SA_CHECK(fem_solver_rollback(o->s, o->snap_step));
+  for (int k = 0; k < NC; k++) fem_contact_rewind(o->c[k]);
   return 0;
 }
 
@@ -938,7 +915,7 @@ static int mc_run(void *scene, SaRun *run) {
   }
   if (o.csv) sa_csv_abort(&o.csv);
   fem_snapshot_destroy(&o.snap);
-  free(o.hist_mark);
+  fem_snapshot_destroy(&o.snap_step);
   fem_solver_destroy(&o.s);
   for (int k = 0; k < NC; k++) fem_contact_destroy(&o.c[k]);
   free(o.cell_types);
