@@ -903,7 +903,10 @@ static int mc_run(void *scene, SaRun *run) {
               "wall_s = %.3f\nstatus = %s\n", st.n_assemble, st.t_assemble, st.n_factor,
               st.n_chol, st.n_lu, st.t_factor, st.n_solve, st.t_solve, st.n_pattern_rebuilds,
               sa_time_now() - o.t_start,
-              rc ? "failed" : rc_stroke ? "stroke stopped early" : "completed");
+              rc == SA_ERR_INTERRUPTED ? "interrupted"
+              : rc                     ? "failed"
+              : rc_stroke              ? "stroke stopped early"
+                                       : "completed");
       if (sa_file_commit(&f)) sa_error_clear();
     } else {
       sa_error_clear();
