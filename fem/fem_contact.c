@@ -50,8 +50,8 @@ struct FemContact {
   double *anc_m, *anc_bm; /* anchors at fem_contact_mark (anc, anc_b) */
   double pp_m[3], *lam_m, *lamT_m; /* committed plane point and multipliers at the mark */
   int *anc_fm;             /* and anc_f */
-  double *sv;    /* fem_contact_save: anc, anc_b, gap_c, tn_c, tt_c, nrm_c, lam_c (3+3+1+1+3+3+1
-                  * per slave) */
+  double *sv;    /* fem_contact_save: anc, anc_b, gap_c, tn_c, tt_c, nrm_c, lam_c, lamT_c
+                  * (3+3+1+1+3+3+1+3 per slave) */
   int *sv_f;      /* and anc_f */
   FemContactStats sv_st;
   double sv_pp[3];
