@@ -46,10 +46,13 @@ typedef struct {
   const char *command, *case_path, *out;
   const char *sets[256];
   int nsets;
+  int argc;
+  char **argv; /* the command line as given (a relaunch under mpirun repeats it) */
 } Args;
 
 static int parse_args(int argc, char **argv, Args *a) {
   memset(a, 0, sizeof *a);
+  a->argc = argc, a->argv = argv;
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];
     if (!strcmp(s, "--set") || !strcmp(s, "--out")) {
@@ -92,6 +95,51 @@ static int stdout_flush(void) {
   return 0;
 }
 
+/* The rank and size mpirun gives this process in the environment (Open MPI, then MPICH's PMI):
+ * read, never initialised here, so that a scene without particles never starts MPI. */
+static void launcher_rank(int *rank, int *size) {
+  const char *r = getenv("OMPI_COMM_WORLD_RANK"), *n = getenv("OMPI_COMM_WORLD_SIZE");
+  if (!r || !n) r = getenv("PMI_RANK"), n = getenv("PMI_SIZE");
+  *rank = r ? atoi(r) : 0;
+  *size = n ? atoi(n) : 1;
+  if (*size < 1) *size = 1;
+}
+
+/* This program again, under `mpirun -np n --bind-to none` with the same arguments: the scene
+ * asked for n MPI ranks (sa_module.h `ranks`). No binding: rank 0's FEM threads use every core
+ * while the other ranks wait. Open MPI refuses root unless told: a container's root is the
+ * usual case here, so the two variables that say so are set (never overriding a user's). Returns
+ * only if mpirun could not be started. */
+static int relaunch_under_mpirun(const Args *a, int n) {
+  char exe[4096];
+  ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  SA_REQUIRE(len > 0, SA_ERR_IO, "cannot find this program's path to start it under mpirun");
+  exe[len] = 0;
+  char np[16];
+  snprintf(np, sizeof np, "%d", n);
+  char **v = calloc((size_t)a->argc + 8, sizeof *v);
+  SA_REQUIRE(v, SA_ERR_MEMORY, "cannot allocate the mpirun command line");
+  int k = 0;
+  v[k++] = "mpirun", v[k++] = "-np", v[k++] = np, v[k++] = "--bind-to", v[k++] = "none";
+  v[k++] = exe;
+  for (int i = 1; i < a->argc; i++) v[k++] = a->argv[i];
+  v[k] = NULL;
+  if (geteuid() == 0) {
+    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
+    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
+  }
+  sa_log(SA_LOG_INFO, "core", "%s asks for %d MPI ranks: starting mpirun -np %d --bind-to none %s",
+         a->case_path, n, n, exe);
+  fflush(stdout);
+  fflush(stderr);
+  execvp("mpirun", v);
+  int e = errno;
+  free(v);
+  return SA_ERROR(SA_ERR_LIBRARY, "%s: [dem] mpi_ranks = %d, but mpirun cannot be started (%s): "
+                  "install Debian's openmpi-bin, or set mpi_ranks = 1", a->case_path, n,
+                  strerror(e));
+}
+
 static int run_case(const Args *a) {
   SaCase *c = NULL;
   void *scene = NULL;
@@ -106,6 +154,25 @@ static int run_case(const Args *a) {
   if (!strcmp(a->command, "check")) {
     softact_write_resolved(stdout, c, &run.params, m, scene);
     rc = stdout_flush();
+    goto done;
+  }
+
+  /* several MPI ranks: rank 0 runs the scene; the others only follow it (sa_module.h) */
+  int rank, size;
+  launcher_rank(&rank, &size);
+  if (size > 1 && !m->follow) {
+    rc = SA_ERROR(SA_ERR_INPUT, "%s: the %s scene runs on one process; start it without mpirun "
+                  "(only the FEM-DEM scene uses several MPI ranks)", a->case_path, m->name);
+    goto done;
+  }
+  int wanted = m->ranks ? m->ranks(scene) : 1;
+  if (size == 1 && wanted > 1) {
+    rc = relaunch_under_mpirun(a, wanted); /* only on failure */
+    goto done;
+  }
+  if (size > 1 && rank > 0) {
+    sa_log_set_level(SA_LOG_WARN); /* rank 0 reports the run */
+    rc = m->follow(scene);
     goto done;
   }
 

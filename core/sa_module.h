@@ -10,7 +10,13 @@
  *   destroy(&scene)         free; accepts NULL
  *   resumes(scene)          optional: non-zero when the run continues the results already in
  *                           its folder (a checkpoint resume); it then writes into that folder
- *                           itself instead of a fresh one (sa_results_open) */
+ *                           itself instead of a fresh one (sa_results_open)
+ *   follow(scene)           optional: the scene runs on several MPI ranks (`mpirun -np N`);
+ *                           a rank other than 0 calls this instead of run, touching no output
+ *                           (rank 0 runs the scene and writes everything). A scene without it
+ *                           refuses to start under mpirun with several ranks.
+ *   ranks(scene)            optional: MPI ranks the case asks for; > 1 outside mpirun makes
+ *                           softact start itself again under `mpirun -np N` (apps/softact.c) */
 #ifndef SA_MODULE_H
 #define SA_MODULE_H
 
@@ -33,6 +39,8 @@ typedef struct {
   int (*run)(void *scene, SaRun *run);
   void (*destroy)(void **scene);
   int (*resumes)(const void *scene); /* may be NULL: never resumes */
+  int (*follow)(void *scene);        /* may be NULL: one process only */
+  int (*ranks)(const void *scene);   /* may be NULL: one rank */
 } SaModule;
 
 /* Scenes core provides itself (registered in apps/softact.c like every module's):

@@ -1,7 +1,8 @@
 /* dem.h - the LIGGGHTS bridge of the FEM-DEM coupling (dem_coupling module).
  *
- * LIGGGHTS 3.8 (Debian libliggghts-dev) runs in-process, serial, through its C library interface
- * (library.h); the few things that interface cannot do (move individual nodes of a wall mesh,
+ * LIGGGHTS 3.8 (Debian libliggghts-dev) runs in-process through its C library interface
+ * (library.h), serial, or domain-decomposed over the ranks of `mpirun -np N` with rank 0 driving
+ * and the others following its calls (dem_parallel.h, dem_bridge_follow below); the few things that interface cannot do (move individual nodes of a wall mesh,
  * read per-triangle forces) go through a small C++ shim (dem_shim.cpp, extern "C", private).
  * LIGGGHTS writes its own output to the log file given at creation, never to the terminal.
  * LIGGGHTS aborts the process on a bad command: every value is validated here before a command
@@ -95,6 +96,13 @@ int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const dou
 /* Force the grains exert on each triangle of mesh id, f [out] 3*ntri [N], at the last step. */
 int dem_bridge_mesh_forces(DemBridge *b, int id, double *f);
 int dem_bridge_mesh_ntri(DemBridge *b, int id);
+/* Running sums of the per-triangle forces over many steps without communication: _add adds the
+ * force of the last step on every triangle of every mesh to the mesh's sum (each rank its own
+ * triangles); _take writes mesh id's sum, added over the ranks, to sum [out] 3*ntri (rank 0;
+ * NULL allowed on the others) and restarts it at zero. On one rank the sum is the one a caller
+ * would add from dem_bridge_mesh_forces, term by term in the same order. */
+int dem_bridge_mesh_forces_add(DemBridge *b);
+int dem_bridge_mesh_forces_take(DemBridge *b, int id, double *sum);
 /* The node positions LIGGGHTS holds for mesh id, in the caller's vertex order, xyz [out]
  * 3*nverts (a check of dem_bridge_set_mesh_nodes); SA_ERR_INTERNAL if the copies of one vertex
  * in different triangles disagree. */
@@ -202,6 +210,14 @@ int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, cons
 int dem_bridge_log_append(DemBridge *b, const char *path);
 /* Send one raw input-script command (validated by the caller; tests and studies only). */
 int dem_bridge_command(DemBridge *b, const char *cmd);
+/* Several MPI ranks: the processor grid px x py x pz (product = ranks) LIGGGHTS decomposes the
+ * box into, before dem_bridge_setup or dem_bridge_setup_from_checkpoint (default: LIGGGHTS'
+ * choice, which splits the longest side of the box). Ignored on one rank. */
+int dem_bridge_set_processors(DemBridge *b, int px, int py, int pz);
+/* A follower rank (not rank 0) of a several-rank job: make every bridge call rank 0 makes,
+ * until rank 0 releases the followers (dem_parallel.h). Returns 0, or an SA_ERR code when the
+ * calls could not be received. */
+int dem_bridge_follow(void);
 void dem_bridge_destroy(DemBridge **b);
 
 #endif

@@ -28,8 +28,10 @@
 #include <stddef.h>
 #include <unistd.h>
 
+#include "dem_parallel.h"
 #include "dem_shim.h"
 #include "sa_error.h"
+#include "sa_log.h"
 
 #define DEM_CMD_MAX 4096
 #define DEM_NAME_MAX 31
@@ -42,6 +44,8 @@ typedef struct {
   int *tri;    /* caller triangles [owned] */
   int *idx;    /* 3*ntri: caller vertex of corner c of LIGGGHTS element id [owned] */
   double *v;   /* node velocities last set (caller order), for checkpoints [owned] */
+  double *acc; /* running sum of this rank's triangle forces (dem_bridge_mesh_forces_add),
+                * 3*ntri [owned, allocated on first use] */
   void *shim;  /* the fix mesh/surface [borrowed from LIGGGHTS] */
 } DemMesh;
 
@@ -92,12 +96,20 @@ struct DemBridge {
    * the grain's centre (the first grain of a pair) */
   int ov_mesh;
   double ov_pos[3];
+  /* MPI (dem_parallel.h): ranks LIGGGHTS runs on (1: serial, the library's own MPI_Init), this
+   * rank, the processor grid asked for (0: LIGGGHTS' choice), and a follower's scratch for the
+   * outputs that only the lead receives */
+  int np, rank, procs[3];
+  double *scratch;
+  size_t scratch_cap;
 };
 
 static void ck_free(Checkpoint **ck);
 static int ck_mesh_check(const DemBridge *b, const char *name, int nverts, const double *xyz,
                          int ntri, const int *tri, DemWallType type);
 static int ck_setup_pass(DemBridge *b, int run0);
+static int finalize_walls_here(DemBridge *b);
+static int gather_grains(DemBridge *b, CkGrain **all, int *n);
 
 /* ---------------------------------------------------------------- closed forms */
 
@@ -298,7 +310,7 @@ static void grid_range(const Grid *g, int k, double xlo, double xhi, int *c0, in
 
 /* ---------------------------------------------------------------- lifecycle */
 
-int dem_bridge_create(const char *log_path, DemBridge **out) {
+static int create_here(const char *log_path, DemBridge **out) {
   SA_REQUIRE(out, SA_ERR_INTERNAL, "dem_bridge_create: no output handle");
   *out = NULL;
   if (log_path) {
@@ -325,7 +337,12 @@ int dem_bridge_create(const char *log_path, DemBridge **out) {
   fflush(stderr);
   int saved = dup(2), devnull = open("/dev/null", O_WRONLY);
   if (saved >= 0 && devnull >= 0) dup2(devnull, 2);
-  lammps_open_no_mpi(5, argv, &b->lmp);
+  b->np = dem_par_leading() || dem_par_following() ? dem_par_size() : 1;
+  b->rank = b->np > 1 ? dem_par_rank() : 0;
+  if (b->np > 1)
+    lammps_open(5, argv, MPI_COMM_WORLD, &b->lmp);
+  else
+    lammps_open_no_mpi(5, argv, &b->lmp);
   if (saved >= 0 && devnull >= 0) dup2(saved, 2);
   if (saved >= 0) close(saved);
   if (devnull >= 0) close(devnull);
@@ -338,7 +355,7 @@ int dem_bridge_create(const char *log_path, DemBridge **out) {
   return 0;
 }
 
-void dem_bridge_destroy(DemBridge **pb) {
+static void destroy_here(DemBridge **pb) {
   if (!pb || !*pb) return;
   DemBridge *b = *pb;
   if (b->lmp) lammps_close(b->lmp);
@@ -347,18 +364,20 @@ void dem_bridge_destroy(DemBridge **pb) {
     free(b->mesh[i].tri);
     free(b->mesh[i].idx);
     free(b->mesh[i].v);
+    free(b->mesh[i].acc);
   }
   free(b->mesh);
   ck_free(&b->ck);
   free(b->cell_head);
   free(b->cell_next);
   free(b->pos);
+  free(b->scratch);
   rmdir(b->tmpdir);
   free(b);
   *pb = NULL;
 }
 
-int dem_bridge_log_append(DemBridge *b, const char *path) {
+static int log_append_here(DemBridge *b, const char *path) {
   SA_REQUIRE(b && b->lmp && path, SA_ERR_INTERNAL, "dem_bridge_log_append: no bridge");
   SA_REQUIRE(path_is_plain(path) && strlen(path) < 900, SA_ERR_INPUT,
              "LIGGGHTS cannot take the log path '%s' (whitespace or a special character)", path);
@@ -368,7 +387,7 @@ int dem_bridge_log_append(DemBridge *b, const char *path) {
   return send(b, "log %s append", path);
 }
 
-int dem_bridge_command(DemBridge *b, const char *cmd) {
+static int command_here(DemBridge *b, const char *cmd) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(cmd, SA_ERR_INTERNAL, "no command");
   lammps_command(b->lmp, (char *)cmd);
@@ -439,6 +458,8 @@ static int setup_pre_box(DemBridge *b) {
       /* the softened grains and the steel walls are outside LIGGGHTS' sanity range */
       "soft_particles yes", "hard_particles yes"};
   for (size_t i = 0; i < sizeof pre / sizeof *pre; i++) SA_CHECK(send(b, "%s", pre[i]));
+  if (b->np > 1 && b->procs[0] > 0)
+    SA_CHECK(send(b, "processors %d %d %d", b->procs[0], b->procs[1], b->procs[2]));
   return 0;
 }
 
@@ -492,7 +513,7 @@ static int setup_post_box(DemBridge *b, const DemParams *p) {
   return 0;
 }
 
-int dem_bridge_setup(DemBridge *b, const DemParams *params) {
+static int setup_here(DemBridge *b, const DemParams *params) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(!b->is_setup, SA_ERR_INPUT, "dem_bridge_setup called twice");
   SA_CHECK(params_check(params));
@@ -610,7 +631,7 @@ static int mesh_check(const DemBridge *b, const char *name, int nverts, const do
   return 0;
 }
 
-int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double *xyz, int ntri,
+static int add_mesh_here(DemBridge *b, const char *name, int nverts, const double *xyz, int ntri,
                         const int *tri, DemWallType type, int *id) {
   SA_REQUIRE(b && b->lmp && id, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_add_mesh before dem_bridge_setup");
@@ -683,8 +704,9 @@ int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double
   m->shim = dem_shim_mesh(b->lmp, m->fix_id);
   SA_REQUIRE(m->shim, SA_ERR_LIBRARY, "LIGGGHTS did not create mesh '%s'", name);
   int n = dem_shim_mesh_size(m->shim);
-  SA_REQUIRE(n == ntri, SA_ERR_LIBRARY, "LIGGGHTS read %d of the %d triangles of mesh '%s'", n,
-             ntri, name);
+  /* (several ranks: LIGGGHTS distributes the triangles at the set-up pass; mesh_map checks) */
+  SA_REQUIRE(n == ntri || b->np > 1, SA_ERR_LIBRARY,
+             "LIGGGHTS read %d of the %d triangles of mesh '%s'", n, ntri, name);
   SA_REQUIRE(dem_shim_mesh_make_moving(m->shim) == 0, SA_ERR_LIBRARY,
              "cannot make mesh '%s' movable", name);
   b->need_setup = 1;
@@ -693,7 +715,7 @@ int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double
     /* the checkpoint's node velocities for the set-up pass, which follows the last mesh at
      * once: with the walls where they were at the checkpoint (the caller moves them next) */
     dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, m->v, 0);
-    if (b->nmesh == b->ck->nmesh) SA_CHECK(dem_bridge_finalize_walls(b));
+    if (b->nmesh == b->ck->nmesh) SA_CHECK(finalize_walls_here(b));
   }
   return 0;
 }
@@ -701,17 +723,19 @@ int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double
 /* Checks LIGGGHTS' triangles against the caller's, element id by id, and records for each
  * (id, corner) the caller vertex there (LIGGGHTS keeps the file's corner order; checked). */
 static int mesh_map(DemBridge *b, DemMesh *m) {
-  int n = dem_shim_mesh_size(m->shim);
-  SA_REQUIRE(n == m->ntri, SA_ERR_LIBRARY, "mesh '%s': LIGGGHTS holds %d of %d triangles",
-             m->fix_id + 5, n, m->ntri);
+  /* the triangles this rank owns (all of them on one rank); an error is recorded, not returned
+   * at once, so that every rank reaches the count below */
+  int n = dem_shim_mesh_size(m->shim), rc = 0;
   double ext = 0;
   for (int k = 0; k < 3; k++) ext = fmax(ext, b->p.box_hi[k] - b->p.box_lo[k]);
   double tol = 1e-12 * ext;
-  for (int i = 0; i < n; i++) {
+  for (int i = 0; i < n && !rc; i++) {
     int id = dem_shim_mesh_id(m->shim, i);
-    SA_REQUIRE(id >= 0 && id < m->ntri, SA_ERR_LIBRARY, "mesh '%s': element id %d out of range",
-               m->fix_id + 5, id);
-    for (int c = 0; c < 3; c++) {
+    if (id < 0 || id >= m->ntri) {
+      rc = SA_ERROR(SA_ERR_LIBRARY, "mesh '%s': element id %d out of range", m->fix_id + 5, id);
+      break;
+    }
+    for (int c = 0; c < 3 && !rc; c++) {
       double x[3];
       dem_shim_mesh_node(m->shim, i, c, x);
       int found = -1;
@@ -720,17 +744,23 @@ static int mesh_map(DemBridge *b, DemMesh *m) {
         if (fabs(p[0] - x[0]) <= tol && fabs(p[1] - x[1]) <= tol && fabs(p[2] - x[2]) <= tol)
           found = m->tri[3 * id + cc];
       }
-      SA_REQUIRE(found >= 0, SA_ERR_LIBRARY,
-                 "mesh '%s': LIGGGHTS' triangle %d corner %d (%g, %g, %g) is not a corner of the "
-                 "caller's triangle %d",
-                 m->fix_id + 5, id, c, x[0], x[1], x[2], id);
-      m->idx[3 * id + c] = found;
+      if (found < 0)
+        rc = SA_ERROR(SA_ERR_LIBRARY,
+                      "mesh '%s': LIGGGHTS' triangle %d corner %d (%g, %g, %g) is not a corner of "
+                      "the caller's triangle %d",
+                      m->fix_id + 5, id, c, x[0], x[1], x[2], id);
+      else
+        m->idx[3 * id + c] = found;
     }
   }
-  return 0;
+  long long all = dem_par_sum_ll(n);
+  if (!rc && all != m->ntri)
+    rc = SA_ERROR(SA_ERR_LIBRARY, "mesh '%s': LIGGGHTS holds %lld of %d triangles", m->fix_id + 5,
+                  all, m->ntri);
+  return rc;
 }
 
-int dem_bridge_finalize_walls(DemBridge *b) {
+static int finalize_walls_here(DemBridge *b) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_finalize_walls before dem_bridge_setup");
   if (b->walls_done) return 0;
@@ -753,7 +783,13 @@ int dem_bridge_finalize_walls(DemBridge *b) {
   SA_CHECK(send(b, "run 0 post no"));
   b->ran = 1;
   b->need_setup = 0;
-  for (int i = 0; i < b->nmesh; i++) SA_CHECK(mesh_map(b, &b->mesh[i]));
+  int rc = 0; /* every mesh on every rank, then agreed: mesh_map ends in a collective */
+  for (int i = 0; i < b->nmesh; i++) {
+    int r = mesh_map(b, &b->mesh[i]);
+    if (!rc) rc = r;
+  }
+  if (b->np > 1) rc = dem_par_agree(rc);
+  if (rc) return sa_error_push(rc, __func__, __FILE__, __LINE__);
   /* node velocities are not in LIGGGHTS' restart ("v" is restart_no): those of the checkpoint
    * or the caller's since (the set-up pass keeps them; set again once the map is checked) */
   if (b->resumed) {
@@ -778,7 +814,7 @@ int dem_bridge_mesh_ntri(DemBridge *b, int id) {
   return b && id >= 0 && id < b->nmesh ? b->mesh[id].ntri : 0;
 }
 
-int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const double *v) {
+static int set_mesh_nodes_here(DemBridge *b, int id, const double *xyz, const double *v) {
   DemMesh *m = NULL;
   SA_CHECK(mesh_get(b, id, &m));
   SA_REQUIRE(xyz, SA_ERR_INPUT, "mesh '%s': no node positions", m->fix_id + 5);
@@ -798,7 +834,7 @@ int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const dou
   return 0;
 }
 
-int dem_bridge_mesh_forces(DemBridge *b, int id, double *f) {
+static int mesh_forces_here(DemBridge *b, int id, double *f) {
   DemMesh *m = NULL;
   SA_CHECK(mesh_get(b, id, &m));
   SA_REQUIRE(f, SA_ERR_INPUT, "mesh '%s': no output array", m->fix_id + 5);
@@ -811,7 +847,7 @@ int dem_bridge_mesh_forces(DemBridge *b, int id, double *f) {
   return 0;
 }
 
-int dem_bridge_mesh_nodes(DemBridge *b, int id, double *xyz) {
+static int mesh_nodes_here(DemBridge *b, int id, double *xyz) {
   DemMesh *m = NULL;
   SA_CHECK(mesh_get(b, id, &m));
   int n = dem_shim_mesh_size(m->shim);
@@ -841,7 +877,7 @@ static int nlocal(DemBridge *b) {
   return n ? *n : 0;
 }
 
-int dem_bridge_count(DemBridge *b) { return b && b->lmp ? nlocal(b) : 0; }
+static int count_here(DemBridge *b) { return b && b->lmp ? nlocal(b) : 0; }
 
 /* Smallest distance from x to any wall triangle, less than `than` (else `than`). */
 static double wall_dist(const DemBridge *b, const double *x, double than) {
@@ -864,7 +900,7 @@ static double wall_dist(const DemBridge *b, const double *x, double than) {
   return sqrt(best2);
 }
 
-int dem_bridge_insert_cylinder(DemBridge *b, double cx, double cy, double r, double z_lo,
+static int insert_cylinder_here(DemBridge *b, double cx, double cy, double r, double z_lo,
                                double z_hi, int n, int *inserted) {
   SA_REQUIRE(b && b->lmp && inserted, SA_ERR_INTERNAL, "DEM bridge not started");
   *inserted = 0;
@@ -886,14 +922,28 @@ int dem_bridge_insert_cylinder(DemBridge *b, double cx, double cy, double r, dou
   /* existing grains + candidates in one array; a uniform grid of cell 2R rebuilt per pass is
    * avoided: the grid covers the cylinder and is filled incrementally. */
   int n0 = nlocal(b);
-  SA_CHECK(grow_double(&b->pos, &b->pos_cap, 3 * ((size_t)n0 + n)));
-  double **x = lammps_extract_atom(b->lmp, "x");
   double *rad = lammps_extract_atom(b->lmp, "radius");
+  CkGrain *all = NULL;
+  if (b->np > 1) { /* every rank places the same grains among those of every rank */
+    SA_CHECK(gather_grains(b, &all, &n0));
+    if (grow_double(&b->scratch, &b->scratch_cap, (size_t)n0 + 1)) {
+      free(all);
+      return sa_error_push(SA_ERR_MEMORY, __func__, __FILE__, __LINE__);
+    }
+    rad = b->scratch;
+    for (int i = 0; i < n0; i++) rad[i] = all[i].radius;
+  }
+  if (grow_double(&b->pos, &b->pos_cap, 3 * ((size_t)n0 + n))) {
+    free(all);
+    return sa_error_push(SA_ERR_MEMORY, __func__, __FILE__, __LINE__);
+  }
+  double **x = lammps_extract_atom(b->lmp, "x");
   double rmax = R;
   for (int i = 0; i < n0; i++) {
-    memcpy(b->pos + 3 * i, x[i], 3 * sizeof(double));
+    memcpy(b->pos + 3 * i, all ? all[i].x : x[i], 3 * sizeof(double));
     if (rad && rad[i] > rmax) rmax = rad[i];
   }
+  free(all);
   Grid g;
   double h = 2 * rmax;
   g.h = h;
@@ -966,18 +1016,18 @@ int dem_bridge_insert_cylinder(DemBridge *b, double cx, double cy, double r, dou
   /* every grain has the same size and density: set them on type 1 as a whole */
   SA_CHECK(send(b, "set type 1 diameter %.17g", p->diameter));
   SA_CHECK(send(b, "set type 1 density %.17g", p->density));
-  *inserted = nlocal(b) - n0;
+  *inserted = (int)dem_par_sum_ll(nlocal(b)) - n0;
   SA_REQUIRE(*inserted == np - n0, SA_ERR_LIBRARY, "LIGGGHTS created %d of %d grains", *inserted,
              np - n0);
   b->need_setup = 1;
   return 0;
 }
 
-int dem_bridge_run(DemBridge *b, int nsteps) {
+static int run_here(DemBridge *b, int nsteps) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_run before dem_bridge_setup");
   SA_REQUIRE(nsteps >= 0, SA_ERR_INPUT, "dem_bridge_run: nsteps = %d, must be >= 0", nsteps);
-  SA_CHECK(dem_bridge_finalize_walls(b));
+  SA_CHECK(finalize_walls_here(b));
   if (nsteps == 0) return 0;
   /* the full set-up (neighbour lists from scratch, fix set-up) only when something changed */
   /* long runs (pouring, settling) print LIGGGHTS's time breakdown to the log; per-step runs
@@ -989,7 +1039,7 @@ int dem_bridge_run(DemBridge *b, int nsteps) {
   return 0;
 }
 
-int dem_bridge_set_young(DemBridge *b, double young, double dt) {
+static int set_young_here(DemBridge *b, double young, double dt) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_set_young before dem_bridge_setup");
   DemParams p = b->p;
@@ -1007,7 +1057,7 @@ int dem_bridge_set_young(DemBridge *b, double young, double dt) {
   return 0;
 }
 
-int dem_bridge_scale_friction(DemBridge *b, double scale) {
+static int scale_friction_here(DemBridge *b, double scale) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_scale_friction before dem_bridge_setup");
   SA_REQUIRE(scale >= 0 && scale <= 1, SA_ERR_INPUT, "friction scale %g outside [0, 1]", scale);
@@ -1018,7 +1068,7 @@ int dem_bridge_scale_friction(DemBridge *b, double scale) {
   return 0;
 }
 
-int dem_bridge_set_skin(DemBridge *b, double skin) {
+static int set_skin_here(DemBridge *b, double skin) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_set_skin before dem_bridge_setup");
   DemParams p = b->p;
@@ -1030,7 +1080,7 @@ int dem_bridge_set_skin(DemBridge *b, double skin) {
   return 0;
 }
 
-int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *radius) {
+static int particles_here(DemBridge *b, double *x, double *v, double *f, double *radius) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   int n = nlocal(b);
   double **src[3] = {x ? lammps_extract_atom(b->lmp, "x") : NULL,
@@ -1050,7 +1100,7 @@ int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *
   return 0;
 }
 
-int dem_bridge_wall_contacts(DemBridge *b, int id, int max, int *grain, int *tri, double *shear,
+static int wall_contacts_here(DemBridge *b, int id, int max, int *grain, int *tri, double *shear,
                              int *n) {
   DemMesh *m = NULL;
   SA_CHECK(mesh_get(b, id, &m));
@@ -1064,7 +1114,7 @@ int dem_bridge_wall_contacts(DemBridge *b, int id, int max, int *grain, int *tri
   return 0;
 }
 
-int dem_bridge_particle_ids(DemBridge *b, int *id) {
+static int particle_ids_here(DemBridge *b, int *id) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   int n = nlocal(b);
   int *tag = lammps_extract_atom(b->lmp, "id");
@@ -1074,7 +1124,7 @@ int dem_bridge_particle_ids(DemBridge *b, int *id) {
   return 0;
 }
 
-double dem_bridge_kinetic_energy(DemBridge *b) {
+static double kinetic_energy_here(DemBridge *b) {
   if (!b || !b->lmp) return 0;
   int n = nlocal(b);
   double **v = lammps_extract_atom(b->lmp, "v"), **w = lammps_extract_atom(b->lmp, "omega");
@@ -1095,21 +1145,37 @@ const char *dem_bridge_overlap_site(const DemBridge *b, double pos[3]) {
   return b->ov_mesh < 0 || b->ov_mesh >= b->nmesh ? "two grains" : b->mesh[b->ov_mesh].fix_id;
 }
 
-double dem_bridge_max_overlap(DemBridge *b) {
+static double max_overlap_here(DemBridge *b) {
   if (!b || !b->lmp) return 0;
   b->ov_mesh = -1;
   b->ov_pos[0] = b->ov_pos[1] = b->ov_pos[2] = NAN;
   int n = nlocal(b);
-  if (n == 0) return 0;
   double **x = lammps_extract_atom(b->lmp, "x");
   double *rad = lammps_extract_atom(b->lmp, "radius");
-  if (!x || !rad) return NAN;
-  if (grow_double(&b->pos, &b->pos_cap, 3 * (size_t)n)) return NAN;
+  CkGrain *all = NULL;
+  if (b->np > 1) { /* the grains of every rank, on every rank (each finds the same) */
+    if (gather_grains(b, &all, &n)) return NAN;
+    if (grow_double(&b->scratch, &b->scratch_cap, (size_t)n + 1)) {
+      free(all);
+      return NAN;
+    }
+    rad = b->scratch;
+    for (int i = 0; i < n; i++) rad[i] = all[i].radius;
+  }
+  if (n == 0) {
+    free(all);
+    return 0;
+  }
+  if ((!all && !x) || !rad || grow_double(&b->pos, &b->pos_cap, 3 * (size_t)n)) {
+    free(all);
+    return NAN;
+  }
   double rmax = 0;
   for (int i = 0; i < n; i++) {
-    memcpy(b->pos + 3 * i, x[i], 3 * sizeof(double));
+    memcpy(b->pos + 3 * i, all ? all[i].x : x[i], 3 * sizeof(double));
     if (rad[i] > rmax) rmax = rad[i];
   }
+  free(all);
   Grid g;
   if (grid_build(b, b->pos, n, 2 * rmax, &g)) return NAN;
   double worst = 0; /* largest overlap / diameter */
@@ -1164,16 +1230,21 @@ double dem_bridge_max_overlap(DemBridge *b) {
   return worst;
 }
 
-int dem_bridge_write_restart(DemBridge *b, const char *path) {
+static int write_restart_here(DemBridge *b, const char *path) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_write_restart before dem_bridge_setup");
   SA_REQUIRE(path_is_plain(path) && strlen(path) < DEM_CMD_MAX - 64, SA_ERR_INPUT,
              "restart path '%s' must be non-empty, without whitespace or any of # $ * %% & ' \"",
              path ? path : "(null)");
-  /* LIGGGHTS aborts if it cannot open the file: try first */
-  FILE *f = fopen(path, "wb");
-  SA_REQUIRE(f, SA_ERR_IO, "cannot open the restart file '%s'", path);
-  fclose(f);
+  /* LIGGGHTS aborts if it cannot open the file: try first (the lead: LIGGGHTS' rank 0 writes) */
+  int rc = 0;
+  if (b->rank == 0) {
+    FILE *f = fopen(path, "wb");
+    if (f) fclose(f);
+    else rc = SA_ERROR(SA_ERR_IO, "cannot open the restart file '%s'", path);
+  }
+  if (b->np > 1) rc = dem_par_agree(rc);
+  if (rc) return rc;
   SA_CHECK(send(b, "write_restart %s", path));
   return 0;
 }
@@ -1302,7 +1373,12 @@ static int ck_capture(DemBridge *b, Checkpoint **out) {
   int64_t *step = lammps_extract_global(b->lmp, "ntimestep");
   SA_REQUIRE(step, SA_ERR_LIBRARY, "LIGGGHTS has no time step counter");
   ck->step = *step;
-  ck->count = nlocal(b);
+  if (b->np > 1) { /* every rank holds the whole checkpoint (ck_setup_pass reads its grains) */
+    int n_all = 0;
+    SA_CHECK(gather_grains(b, &ck->grain, &n_all));
+    ck->count = n_all;
+  } else
+    ck->count = nlocal(b);
   ck->rng = b->rng;
   ck->p = b->p;
   ck->nmesh = b->nmesh;
@@ -1319,6 +1395,7 @@ static int ck_capture(DemBridge *b, Checkpoint **out) {
     memcpy(c->xyz, m->xyz, 3 * (size_t)m->nverts * sizeof *c->xyz);
     memcpy(c->v, m->v, 3 * (size_t)m->nverts * sizeof *c->v);
   }
+  if (b->np > 1) return 0; /* gathered above, in tag order */
   SA_CALLOC(ck->grain, ck->count);
   int n = (int)ck->count;
   if (n == 0) return 0;
@@ -1558,39 +1635,52 @@ static int tmp_commit(FILE *f, const char *tmp, const char *path, const unsigned
   return 0;
 }
 
-int dem_bridge_write_checkpoint(DemBridge *b, const char *path) {
+static int write_checkpoint_here(DemBridge *b, const char *path) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(b->is_setup, SA_ERR_INPUT, "dem_bridge_write_checkpoint before dem_bridge_setup");
   SA_REQUIRE(path && *path && strlen(path) < CK_PATH_MAX, SA_ERR_INPUT,
              "checkpoint path must be non-empty and shorter than %d characters", CK_PATH_MAX);
   /* LIGGGHTS aborts in write_restart when it has no grain */
-  SA_REQUIRE(nlocal(b) > 0, SA_ERR_INPUT, "checkpoint '%s': there are no grains to checkpoint",
-             path);
+  SA_REQUIRE(dem_par_sum_ll(nlocal(b)) > 0, SA_ERR_INPUT,
+             "checkpoint '%s': there are no grains to checkpoint", path);
+  /* files are the lead's (rank 0 writes LIGGGHTS' restart); the other ranks take part in the
+   * collectives only, and learn whether the lead could open them */
+  int lead = b->rank == 0, rc = 0;
   char tmp[CK_PATH_MAX + 64];
   FILE *out = NULL;
-  SA_CHECK(tmp_open(path, tmp, sizeof tmp, &out));
   char rpath[320];
   snprintf(rpath, sizeof rpath, "%s/checkpoint.restart", b->tmpdir);
-  FILE *f = fopen(rpath, "wb"); /* LIGGGHTS aborts if it cannot open the file: try first */
-  int rc = f ? 0 : SA_ERROR(SA_ERR_IO, "cannot open the temporary restart file '%s'", rpath);
-  if (f) fclose(f);
-  if (!rc) rc = dem_bridge_finalize_walls(b);
+  if (lead) {
+    rc = tmp_open(path, tmp, sizeof tmp, &out);
+    FILE *f = rc ? NULL : fopen(rpath, "wb"); /* LIGGGHTS aborts if it cannot open it: try first */
+    if (!rc && !f) rc = SA_ERROR(SA_ERR_IO, "cannot open the temporary restart file '%s'", rpath);
+    if (f) fclose(f);
+  }
+  if (b->np > 1) rc = dem_par_agree(rc);
+  if (rc) {
+    if (out) fclose(out), remove(tmp);
+    return sa_error_push(rc, __func__, __FILE__, __LINE__);
+  }
+  rc = finalize_walls_here(b);
   if (!rc) rc = send(b, "write_restart %s", rpath);
   unsigned char *restart = NULL;
   size_t nrestart = 0;
-  if (!rc) rc = read_whole(rpath, &restart, &nrestart);
-  remove(rpath);
+  if (!rc && lead) rc = read_whole(rpath, &restart, &nrestart);
+  if (lead) remove(rpath);
   Checkpoint *ck = NULL;
   Buf w = {0};
   if (!rc) rc = ck_capture(b, &ck);
-  if (!rc) {
+  if (!rc && lead) {
     ck_serialise(ck, restart, nrestart, &w);
     if (w.err) rc = SA_ERROR(SA_ERR_MEMORY, "cannot allocate the checkpoint '%s'", path);
   }
   free(restart);
-  if (!rc) rc = tmp_commit(out, tmp, path, w.d, w.n);
-  else fclose(out), remove(tmp);
+  if (lead) {
+    if (!rc) rc = tmp_commit(out, tmp, path, w.d, w.n);
+    else fclose(out), remove(tmp);
+  }
   free(w.d);
+  if (b->np > 1) rc = dem_par_agree(rc);
   if (rc) {
     ck_free(&ck);
     return sa_error_push(rc, __func__, __FILE__, __LINE__);
@@ -1657,9 +1747,10 @@ static int ck_verify_grains(DemBridge *b, const Checkpoint *ck) {
              "LIGGGHTS restored time step %lld from checkpoint '%s', which was written at %lld",
              step ? (long long)*step : -1LL, ck->path, (long long)ck->step);
   int n = nlocal(b);
-  SA_REQUIRE(n == ck->count, SA_ERR_LIBRARY,
-             "LIGGGHTS restored %d grains from checkpoint '%s', which holds %lld", n, ck->path,
-             (long long)ck->count);
+  long long n_all = dem_par_sum_ll(n);
+  SA_REQUIRE(n_all == ck->count, SA_ERR_LIBRARY,
+             "LIGGGHTS restored %lld grains from checkpoint '%s', which holds %lld", n_all,
+             ck->path, (long long)ck->count);
   if (n == 0) return 0;
   int *tag = lammps_extract_atom(b->lmp, "id"), *type = lammps_extract_atom(b->lmp, "type");
   double **x = lammps_extract_atom(b->lmp, "x"), **v = lammps_extract_atom(b->lmp, "v"),
@@ -1682,7 +1773,7 @@ static int ck_verify_grains(DemBridge *b, const Checkpoint *ck) {
   return 0;
 }
 
-int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, const char *path,
+static int setup_from_checkpoint_here(DemBridge *b, const DemParams *params, const char *path,
                                      int expected_count) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(!b->is_setup, SA_ERR_INPUT,
@@ -1698,7 +1789,7 @@ int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, cons
   /* LIGGGHTS reads its part from a file of its own */
   char rpath[320];
   snprintf(rpath, sizeof rpath, "%s/resume.restart", b->tmpdir);
-  if (!rc) {
+  if (!rc && b->rank == 0) {
     FILE *f = fopen(rpath, "wb");
     int ok = f && fwrite(ck->restart, 1, ck->restart_bytes, f) == ck->restart_bytes;
     if (f) ok = (fclose(f) == 0) && ok;
@@ -1707,6 +1798,7 @@ int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, cons
       rc = SA_ERROR(SA_ERR_IO, "cannot write the temporary restart file '%s'", rpath);
     }
   }
+  if (b->np > 1) rc = dem_par_agree(rc);
   if (rc) {
     ck_free(&ck);
     free(buf);
@@ -1730,6 +1822,7 @@ int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, cons
   }
   remove(rpath);
   if (!rc) rc = ck_verify_grains(b, ck);
+  if (b->np > 1) rc = dem_par_agree(rc);
   if (!rc) rc = setup_post_box(b, params);
   if (rc) {
     ck_free(&ck);
@@ -1743,7 +1836,7 @@ int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, cons
   b->resumed = 1;
   /* no mesh to wait for: the set-up pass now */
   if (ck->nmesh == 0) {
-    SA_CHECK(dem_bridge_finalize_walls(b));
+    SA_CHECK(finalize_walls_here(b));
     SA_CHECK(ck_setup_pass(b, 1));
   }
   return 0;
@@ -1799,5 +1892,436 @@ static int ck_setup_pass(DemBridge *b, int run0) {
     memcpy(f[i], g->f, sizeof g->f);
     memcpy(t[i], g->torque, sizeof g->torque);
   }
+  return 0;
+}
+
+/* ---------------------------------------------------------------- several MPI ranks
+ *
+ * dem_parallel.h describes the scheme. The functions above are each rank's part of a call
+ * (their names end in _here); the public functions below are what the scene calls: on the lead
+ * of a several-rank bridge they first broadcast the call, and a follower, in dem_bridge_follow,
+ * makes the same public call. A call ends with dem_par_agree where a rank could fail alone
+ * before the others went on into a LIGGGHTS collective (set-up, meshes, checkpoints); the
+ * calls made every DEM step (run, wall nodes, forces) fail only on their arguments, which
+ * every rank checks alike. Grains come back in tag order on several ranks (LIGGGHTS' own order
+ * on one). */
+
+enum {
+  OP_CREATE = 1, OP_DESTROY, OP_LOG_APPEND, OP_COMMAND, OP_SETUP, OP_SETUP_CK, OP_PROCESSORS,
+  OP_ADD_MESH, OP_FINALIZE, OP_SET_NODES, OP_FORCES, OP_NODES, OP_COUNT, OP_INSERT, OP_RUN,
+  OP_SET_YOUNG, OP_SCALE_FRICTION, OP_SET_SKIN, OP_PARTICLES, OP_CONTACTS, OP_IDS, OP_KE,
+  OP_OVERLAP, OP_WRITE_RESTART, OP_WRITE_CK, OP_FORCES_ADD, OP_FORCES_TAKE
+};
+
+/* A bridge whose calls the lead broadcasts (rank 0 of several). */
+static int leads(const DemBridge *b) { return b && b->np > 1 && b->rank == 0; }
+static int parallel(const DemBridge *b) { return b && b->np > 1; }
+
+/* Broadcast call op with integers i[0..ni), reals d[0..nd) and buffers p[k] of n[k] bytes. */
+static void lead_call(int op, int ni, const int *i, int nd, const double *d, const void *p0,
+                      size_t n0, const void *p1, size_t n1, const void *p2, size_t n2) {
+  DemParCall c;
+  memset(&c, 0, sizeof c);
+  c.op = op;
+  for (int k = 0; k < ni && k < 6; k++) c.i[k] = i[k];
+  for (int k = 0; k < nd && k < 8; k++) c.d[k] = d[k];
+  const void *buf[DEM_PAR_NBUF] = {p0, p1, p2, NULL};
+  size_t n[DEM_PAR_NBUF] = {p0 ? n0 : 0, p1 ? n1 : 0, p2 ? n2 : 0, 0};
+  for (int k = 0; k < DEM_PAR_NBUF; k++) c.bytes[k] = (int64_t)n[k];
+  dem_par_call(&c, buf);
+}
+
+/* Every rank's grains, on every rank, in tag order: *all [owned by the caller], *n. */
+static int gather_grains(DemBridge *b, CkGrain **all, int *n) {
+  *all = NULL, *n = 0;
+  int nl = nlocal(b);
+  CkGrain *loc = calloc((size_t)(nl > 0 ? nl : 1), sizeof *loc);
+  SA_REQUIRE(loc, SA_ERR_MEMORY, "cannot allocate %d grains", nl);
+  int *tag = lammps_extract_atom(b->lmp, "id"), *type = lammps_extract_atom(b->lmp, "type");
+  double **x = lammps_extract_atom(b->lmp, "x"), **v = lammps_extract_atom(b->lmp, "v"),
+         **w = lammps_extract_atom(b->lmp, "omega"), **f = lammps_extract_atom(b->lmp, "f"),
+         **t = lammps_extract_atom(b->lmp, "torque");
+  double *rad = lammps_extract_atom(b->lmp, "radius"), *rm = lammps_extract_atom(b->lmp, "rmass");
+  int ok = nl == 0 || (tag && type && x && v && w && f && t && rad && rm);
+  for (int i = 0; ok && i < nl; i++) {
+    CkGrain *g = &loc[i];
+    g->tag = tag[i], g->type = type[i];
+    memcpy(g->x, x[i], sizeof g->x), memcpy(g->v, v[i], sizeof g->v);
+    memcpy(g->omega, w[i], sizeof g->omega), memcpy(g->f, f[i], sizeof g->f);
+    memcpy(g->torque, t[i], sizeof g->torque);
+    g->radius = rad[i], g->rmass = rm[i];
+  }
+  void *out = NULL;
+  int rc = dem_par_allgather(loc, ok ? nl : 0, sizeof *loc, &out, n);
+  free(loc);
+  if (rc) return rc;
+  SA_REQUIRE(ok, SA_ERR_LIBRARY, "LIGGGHTS lacks a per-grain array of atom style granular");
+  *all = out;
+  qsort(*all, (size_t)*n, sizeof **all, cmp_grain);
+  return 0;
+}
+
+int dem_bridge_create(const char *log_path, DemBridge **out) {
+  if (dem_par_leading()) {
+    if (log_path) { /* the lead's own check first: the followers must not start alone */
+      FILE *f = fopen(log_path, "w");
+      SA_REQUIRE(f, SA_ERR_IO, "cannot open the LIGGGHTS log file '%s'", log_path);
+      fclose(f);
+    }
+    lead_call(OP_CREATE, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  }
+  int rc = create_here(log_path, out);
+  return dem_par_leading() || dem_par_following() ? dem_par_agree(rc) : rc;
+}
+
+void dem_bridge_destroy(DemBridge **pb) {
+  if (pb && leads(*pb)) lead_call(OP_DESTROY, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  destroy_here(pb);
+}
+
+int dem_bridge_log_append(DemBridge *b, const char *path) {
+  if (leads(b) && path) lead_call(OP_LOG_APPEND, 0, NULL, 0, NULL, path, strlen(path) + 1, NULL, 0, NULL, 0);
+  int rc = log_append_here(b, path);
+  return parallel(b) ? dem_par_agree(rc) : rc;
+}
+
+int dem_bridge_command(DemBridge *b, const char *cmd) {
+  if (leads(b) && cmd) lead_call(OP_COMMAND, 0, NULL, 0, NULL, cmd, strlen(cmd) + 1, NULL, 0, NULL, 0);
+  return command_here(b, cmd);
+}
+
+int dem_bridge_set_processors(DemBridge *b, int px, int py, int pz) {
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  SA_REQUIRE(!b->is_setup, SA_ERR_INPUT, "dem_bridge_set_processors after the set-up");
+  SA_REQUIRE(px > 0 && py > 0 && pz > 0, SA_ERR_INPUT,
+             "processor grid %d x %d x %d: every count must be >= 1", px, py, pz);
+  SA_REQUIRE(b->np == 1 || (long)px * py * pz == b->np, SA_ERR_INPUT,
+             "processor grid %d x %d x %d does not hold the %d MPI ranks", px, py, pz, b->np);
+  if (leads(b)) {
+    int i[3] = {px, py, pz};
+    lead_call(OP_PROCESSORS, 3, i, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  }
+  b->procs[0] = px, b->procs[1] = py, b->procs[2] = pz;
+  return 0;
+}
+
+int dem_bridge_setup(DemBridge *b, const DemParams *params) {
+  if (leads(b) && params) lead_call(OP_SETUP, 0, NULL, 0, NULL, params, sizeof *params, NULL, 0, NULL, 0);
+  int rc = setup_here(b, params);
+  return parallel(b) ? dem_par_agree(rc) : rc;
+}
+
+int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, const char *path,
+                                     int expected_count) {
+  if (leads(b) && params && path)
+    lead_call(OP_SETUP_CK, 1, &expected_count, 0, NULL, params, sizeof *params, path,
+              strlen(path) + 1, NULL, 0);
+  int rc = setup_from_checkpoint_here(b, params, path, expected_count);
+  return parallel(b) ? dem_par_agree(rc) : rc;
+}
+
+int dem_bridge_add_mesh(DemBridge *b, const char *name, int nverts, const double *xyz, int ntri,
+                        const int *tri, DemWallType type, int *id) {
+  if (leads(b) && name && xyz && tri && nverts > 0 && ntri > 0) {
+    int i[3] = {nverts, ntri, (int)type};
+    lead_call(OP_ADD_MESH, 3, i, 0, NULL, name, strlen(name) + 1, xyz,
+              3 * (size_t)nverts * sizeof *xyz, tri, 3 * (size_t)ntri * sizeof *tri);
+  } else if (leads(b)) /* the followers fail alike on what is missing */
+    lead_call(OP_ADD_MESH, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  int rc = add_mesh_here(b, name, nverts, xyz, ntri, tri, type, id);
+  return parallel(b) ? dem_par_agree(rc) : rc;
+}
+
+int dem_bridge_finalize_walls(DemBridge *b) {
+  if (leads(b)) lead_call(OP_FINALIZE, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  int rc = finalize_walls_here(b);
+  return parallel(b) ? dem_par_agree(rc) : rc;
+}
+
+int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const double *v) {
+  if (leads(b)) {
+    size_t n = id >= 0 && id < b->nmesh ? 3 * (size_t)b->mesh[id].nverts * sizeof(double) : 0;
+    lead_call(OP_SET_NODES, 1, &id, 0, NULL, xyz, n, v, n, NULL, 0);
+  }
+  return set_mesh_nodes_here(b, id, xyz, v);
+}
+
+int dem_bridge_mesh_forces(DemBridge *b, int id, double *f) {
+  if (!parallel(b)) return mesh_forces_here(b, id, f);
+  if (leads(b)) lead_call(OP_FORCES, 1, &id, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  if (b->rank > 0) { /* a follower's share goes into its scratch */
+    SA_CHECK(grow_double(&b->scratch, &b->scratch_cap, 3 * (size_t)m->ntri));
+    f = b->scratch;
+  }
+  SA_REQUIRE(f, SA_ERR_INPUT, "mesh '%s': no output array", m->fix_id + 5);
+  /* each triangle's force is on the rank that owns it (LIGGGHTS adds what its ghost copies
+   * took to the owner): zero elsewhere, summed over the ranks */
+  memset(f, 0, 3 * (size_t)m->ntri * sizeof *f);
+  int bad = b->ran && dem_shim_mesh_forces(m->shim, f) != 0;
+  dem_par_sum_to_lead(f, 3 * (size_t)m->ntri);
+  SA_REQUIRE(!bad, SA_ERR_LIBRARY, "mesh '%s' has no force (stress) data", m->fix_id + 5);
+  return 0;
+}
+
+int dem_bridge_mesh_forces_add(DemBridge *b) {
+  if (leads(b)) lead_call(OP_FORCES_ADD, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
+  for (int i = 0; i < b->nmesh; i++) {
+    DemMesh *m = &b->mesh[i];
+    size_t n = 3 * (size_t)m->ntri;
+    if (!m->acc) SA_CALLOC(m->acc, n);
+    if (!b->ran) continue;
+    SA_CHECK(grow_double(&b->scratch, &b->scratch_cap, n));
+    /* this rank's triangles (all on one rank), in the order of dem_bridge_mesh_forces */
+    memset(b->scratch, 0, n * sizeof *b->scratch);
+    SA_REQUIRE(dem_shim_mesh_forces(m->shim, b->scratch) == 0, SA_ERR_LIBRARY,
+               "mesh '%s' has no force (stress) data", m->fix_id + 5);
+    for (size_t k = 0; k < n; k++) m->acc[k] += b->scratch[k];
+  }
+  return 0;
+}
+
+int dem_bridge_mesh_forces_take(DemBridge *b, int id, double *sum) {
+  if (leads(b)) lead_call(OP_FORCES_TAKE, 1, &id, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  size_t n = 3 * (size_t)m->ntri;
+  if (!m->acc) SA_CALLOC(m->acc, n);
+  dem_par_sum_to_lead(m->acc, n); /* one rank: nothing to sum */
+  if (b->rank == 0) {
+    SA_REQUIRE(sum, SA_ERR_INPUT, "mesh '%s': no output array", m->fix_id + 5);
+    memcpy(sum, m->acc, n * sizeof *sum);
+  }
+  memset(m->acc, 0, n * sizeof *m->acc);
+  return 0;
+}
+
+int dem_bridge_mesh_nodes(DemBridge *b, int id, double *xyz) {
+  if (!parallel(b)) return mesh_nodes_here(b, id, xyz);
+  if (leads(b)) lead_call(OP_NODES, 1, &id, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  if (b->rank > 0) {
+    SA_CHECK(grow_double(&b->scratch, &b->scratch_cap, 3 * (size_t)m->nverts));
+    xyz = b->scratch;
+  }
+  SA_REQUIRE(xyz, SA_ERR_INPUT, "mesh '%s': no output array", m->fix_id + 5);
+  /* the copies this rank owns, -inf elsewhere; the maximum over the ranks */
+  for (int i = 0; i < 3 * m->nverts; i++) xyz[i] = -INFINITY;
+  int n = dem_shim_mesh_size(m->shim), differ = -1;
+  for (int i = 0; i < n; i++) {
+    int t = dem_shim_mesh_id(m->shim, i);
+    for (int c = 0; c < 3; c++) {
+      double x[3];
+      dem_shim_mesh_node(m->shim, i, c, x);
+      double *o = xyz + 3 * m->idx[3 * t + c];
+      if (o[0] != -INFINITY && (o[0] != x[0] || o[1] != x[1] || o[2] != x[2]))
+        differ = m->idx[3 * t + c];
+      memcpy(o, x, sizeof x);
+    }
+  }
+  dem_par_max(xyz, 3 * (size_t)m->nverts);
+  for (int i = 0; i < 3 * m->nverts; i++)
+    if (xyz[i] == -INFINITY) xyz[i] = NAN;
+  SA_REQUIRE(differ < 0, SA_ERR_INTERNAL, "mesh '%s': the copies of vertex %d disagree in LIGGGHTS",
+             m->fix_id + 5, differ);
+  return 0;
+}
+
+int dem_bridge_count(DemBridge *b) {
+  if (!parallel(b)) return count_here(b);
+  if (leads(b)) lead_call(OP_COUNT, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  return (int)dem_par_sum_ll(nlocal(b));
+}
+
+int dem_bridge_insert_cylinder(DemBridge *b, double cx, double cy, double r, double z_lo,
+                               double z_hi, int n, int *inserted) {
+  if (leads(b)) {
+    double d[5] = {cx, cy, r, z_lo, z_hi};
+    lead_call(OP_INSERT, 1, &n, 5, d, NULL, 0, NULL, 0, NULL, 0);
+  }
+  int rc = insert_cylinder_here(b, cx, cy, r, z_lo, z_hi, n, inserted);
+  return parallel(b) ? dem_par_agree(rc) : rc;
+}
+
+int dem_bridge_run(DemBridge *b, int nsteps) {
+  int first = b && !b->walls_done; /* the walls are finalised: an agreed call */
+  if (leads(b)) lead_call(OP_RUN, 1, &nsteps, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  int rc = run_here(b, nsteps);
+  return parallel(b) && first ? dem_par_agree(rc) : rc;
+}
+
+int dem_bridge_set_young(DemBridge *b, double young, double dt) {
+  if (leads(b)) {
+    double d[2] = {young, dt};
+    lead_call(OP_SET_YOUNG, 0, NULL, 2, d, NULL, 0, NULL, 0, NULL, 0);
+  }
+  return set_young_here(b, young, dt);
+}
+
+int dem_bridge_scale_friction(DemBridge *b, double scale) {
+  if (leads(b)) lead_call(OP_SCALE_FRICTION, 0, NULL, 1, &scale, NULL, 0, NULL, 0, NULL, 0);
+  return scale_friction_here(b, scale);
+}
+
+int dem_bridge_set_skin(DemBridge *b, double skin) {
+  if (leads(b)) lead_call(OP_SET_SKIN, 0, NULL, 1, &skin, NULL, 0, NULL, 0, NULL, 0);
+  return set_skin_here(b, skin);
+}
+
+int dem_bridge_particles(DemBridge *b, double *x, double *v, double *f, double *radius) {
+  if (!parallel(b)) return particles_here(b, x, v, f, radius);
+  if (leads(b)) lead_call(OP_PARTICLES, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  CkGrain *all;
+  int n;
+  SA_CHECK(gather_grains(b, &all, &n));
+  if (b->rank == 0)
+    for (int i = 0; i < n; i++) {
+      if (x) memcpy(x + 3 * i, all[i].x, sizeof all[i].x);
+      if (v) memcpy(v + 3 * i, all[i].v, sizeof all[i].v);
+      if (f) memcpy(f + 3 * i, all[i].f, sizeof all[i].f);
+      if (radius) radius[i] = all[i].radius;
+    }
+  free(all);
+  return 0;
+}
+
+typedef struct {
+  int grain, tri;
+  double shear[3];
+} Contact;
+
+static int cmp_contact(const void *x, const void *y) {
+  const Contact *a = x, *c = y;
+  if (a->grain != c->grain) return a->grain < c->grain ? -1 : 1;
+  return (a->tri > c->tri) - (a->tri < c->tri);
+}
+
+int dem_bridge_wall_contacts(DemBridge *b, int id, int max, int *grain, int *tri, double *shear,
+                             int *n) {
+  if (!parallel(b)) return wall_contacts_here(b, id, max, grain, tri, shear, n);
+  if (leads(b)) lead_call(OP_CONTACTS, 1, &id, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  /* this rank's contacts (counted, then read), gathered, in (grain, triangle) order */
+  int k = b->ran ? dem_shim_mesh_contacts(b->lmp, m->shim, 0, NULL, NULL, NULL) : 0;
+  int nk = k > 0 ? k : 0;
+  int *g = malloc(sizeof(int) * (size_t)(nk + 1)), *t = malloc(sizeof(int) * (size_t)(nk + 1));
+  double *h = malloc(sizeof(double) * 3 * (size_t)(nk + 1));
+  Contact *loc = calloc((size_t)nk + 1, sizeof *loc);
+  int ok = g && t && h && loc;
+  if (ok && nk > 0) dem_shim_mesh_contacts(b->lmp, m->shim, nk, g, t, h);
+  for (int i = 0; ok && i < nk; i++) {
+    loc[i].grain = g[i], loc[i].tri = t[i];
+    memcpy(loc[i].shear, h + 3 * i, sizeof loc[i].shear);
+  }
+  free(g), free(t), free(h);
+  void *all = NULL;
+  int na = 0, rc = dem_par_allgather(loc, ok ? nk : 0, sizeof *loc, &all, &na);
+  free(loc);
+  SA_CHECK(rc);
+  Contact *c = all;
+  qsort(c, (size_t)na, sizeof *c, cmp_contact);
+  if (n) *n = na;
+  for (int i = 0; b->rank == 0 && i < na && i < max; i++) {
+    grain[i] = c[i].grain, tri[i] = c[i].tri;
+    memcpy(shear + 3 * i, c[i].shear, sizeof c[i].shear);
+  }
+  free(all);
+  SA_REQUIRE(ok && k >= 0, SA_ERR_LIBRARY, "mesh '%s' has no contact history", m->fix_id + 5);
+  return 0;
+}
+
+int dem_bridge_particle_ids(DemBridge *b, int *id) {
+  if (!parallel(b)) return particle_ids_here(b, id);
+  if (leads(b)) lead_call(OP_IDS, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  CkGrain *all;
+  int n;
+  SA_CHECK(gather_grains(b, &all, &n));
+  for (int i = 0; b->rank == 0 && id && i < n; i++) id[i] = (int)all[i].tag;
+  free(all);
+  return 0;
+}
+
+double dem_bridge_kinetic_energy(DemBridge *b) {
+  if (!parallel(b)) return kinetic_energy_here(b);
+  if (leads(b)) lead_call(OP_KE, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  double e = kinetic_energy_here(b);
+  dem_par_sum_to_lead(&e, 1);
+  return e;
+}
+
+double dem_bridge_max_overlap(DemBridge *b) {
+  if (leads(b)) lead_call(OP_OVERLAP, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
+  return max_overlap_here(b);
+}
+
+int dem_bridge_write_restart(DemBridge *b, const char *path) {
+  if (leads(b) && path) lead_call(OP_WRITE_RESTART, 0, NULL, 0, NULL, path, strlen(path) + 1, NULL, 0, NULL, 0);
+  int rc = write_restart_here(b, path);
+  return parallel(b) ? dem_par_agree(rc) : rc;
+}
+
+int dem_bridge_write_checkpoint(DemBridge *b, const char *path) {
+  if (leads(b) && path)
+    lead_call(OP_WRITE_CK, 0, NULL, 0, NULL, path, strlen(path) + 1, NULL, 0, NULL, 0);
+  int rc = write_checkpoint_here(b, path);
+  return parallel(b) ? dem_par_agree(rc) : rc;
+}
+
+int dem_bridge_follow(void) {
+  SA_REQUIRE(dem_par_following(), SA_ERR_INTERNAL, "dem_bridge_follow on the lead or on one rank");
+  DemBridge *b = NULL;
+  for (;;) {
+    DemParCall c;
+    void *p[DEM_PAR_NBUF];
+    SA_CHECK(dem_par_next(&c, p));
+    if (c.op < 0) break;
+    int rc = 0, k = 0;
+    switch (c.op) {
+    case OP_CREATE: rc = dem_bridge_create(NULL, &b); break;
+    case OP_DESTROY: dem_bridge_destroy(&b); break;
+    case OP_LOG_APPEND: rc = dem_bridge_log_append(b, p[0]); break;
+    case OP_COMMAND: rc = dem_bridge_command(b, p[0]); break;
+    case OP_SETUP: rc = dem_bridge_setup(b, p[0]); break;
+    case OP_SETUP_CK: rc = dem_bridge_setup_from_checkpoint(b, p[0], p[1], c.i[0]); break;
+    case OP_PROCESSORS: rc = dem_bridge_set_processors(b, c.i[0], c.i[1], c.i[2]); break;
+    case OP_ADD_MESH:
+      rc = dem_bridge_add_mesh(b, p[0], c.i[0], p[1], c.i[1], p[2], (DemWallType)c.i[2], &k);
+      break;
+    case OP_FINALIZE: rc = dem_bridge_finalize_walls(b); break;
+    case OP_SET_NODES: rc = dem_bridge_set_mesh_nodes(b, c.i[0], p[0], p[1]); break;
+    case OP_FORCES: rc = dem_bridge_mesh_forces(b, c.i[0], NULL); break;
+    case OP_NODES: rc = dem_bridge_mesh_nodes(b, c.i[0], NULL); break;
+    case OP_COUNT: dem_bridge_count(b); break;
+    case OP_INSERT:
+      rc = dem_bridge_insert_cylinder(b, c.d[0], c.d[1], c.d[2], c.d[3], c.d[4], c.i[0], &k);
+      break;
+    case OP_RUN: rc = dem_bridge_run(b, c.i[0]); break;
+    case OP_SET_YOUNG: rc = dem_bridge_set_young(b, c.d[0], c.d[1]); break;
+    case OP_SCALE_FRICTION: rc = dem_bridge_scale_friction(b, c.d[0]); break;
+    case OP_SET_SKIN: rc = dem_bridge_set_skin(b, c.d[0]); break;
+    case OP_PARTICLES: rc = dem_bridge_particles(b, NULL, NULL, NULL, NULL); break;
+    case OP_CONTACTS: rc = dem_bridge_wall_contacts(b, c.i[0], 0, NULL, NULL, NULL, &k); break;
+    case OP_IDS: rc = dem_bridge_particle_ids(b, NULL); break;
+    case OP_KE: dem_bridge_kinetic_energy(b); break;
+    case OP_OVERLAP: dem_bridge_max_overlap(b); break;
+    case OP_WRITE_RESTART: rc = dem_bridge_write_restart(b, p[0]); break;
+    case OP_WRITE_CK: rc = dem_bridge_write_checkpoint(b, p[0]); break;
+    case OP_FORCES_ADD: rc = dem_bridge_mesh_forces_add(b); break;
+    case OP_FORCES_TAKE: rc = dem_bridge_mesh_forces_take(b, c.i[0], NULL); break;
+    default: rc = SA_ERROR(SA_ERR_INTERNAL, "unknown DEM call %d from the lead", c.op);
+    }
+    for (int j = 0; j < DEM_PAR_NBUF; j++) free(p[j]);
+    if (rc) { /* the lead hears of it through dem_par_agree; the message is said here */
+      sa_log(SA_LOG_ERROR, "dem", "MPI rank %d: %s", dem_par_rank(), sa_error_message());
+      sa_error_clear();
+    }
+  }
+  /* the lead destroys its bridge before it releases the followers; a bridge left here would
+   * need the lead for LIGGGHTS' collective shutdown, so it is left to the process exit */
+  if (b) sa_log(SA_LOG_WARN, "dem", "MPI rank %d: released with a DEM bridge open", dem_par_rank());
   return 0;
 }

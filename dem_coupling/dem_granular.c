@@ -26,6 +26,7 @@
 #include "dem_checks.h"
 #include "dem_piston.h"
 #include "dem_iqn.h"
+#include "dem_parallel.h"
 #include "dem_scene.h"
 #include "fem_contrib.h"
 #include "fem_coupling.h"
@@ -309,6 +310,10 @@ static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z
   SA_CHECK(sa_run_path(g->run, "liggghts.log", log));
   /* a repeated coupling step writes on in the run's log (a new log would truncate it) */
   SA_CHECK(dem_bridge_create(repeat ? NULL : log, &g->b));
+  /* several MPI ranks: the box cut by the plane y = 0, the plane of the bend, so that both
+   * halves of the axisymmetric bore hold as many grains while it pours, settles and bends
+   * (LIGGGHTS' own choice would cut the long z side above the bed, leaving one rank idle) */
+  if (dem_par_size() > 1) SA_CHECK(dem_bridge_set_processors(g->b, 1, dem_par_size(), 1));
   if (repeat && dem_bridge_log_append(g->b, log)) sa_error_clear();
   if (resume) {
     SA_CHECK(dem_bridge_setup_from_checkpoint(g->b, &p, resume, g->n_grains));
@@ -551,6 +556,9 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
    * the size of a 10-step jump of the settling wall, so there the wall moves every step
    * (docs/dem.md, "Session 2026-12-06") */
   int chunk = cc->sample_every, nsamp = 0, wall_every = v0 > 0 || v1 > 0 ? cc->wall_every : 1;
+  /* several MPI ranks: the forces are summed on each rank over the step and gathered at its
+   * end (one reduction instead of one per DEM step); one rank: read every step as before */
+  int par = dem_par_size() > 1;
   long next_wall = 0; /* DEM step at which the wall is placed next */
   for (int k = 0; k < N_MESH; k++) g->F_mesh[k][0] = g->F_mesh[k][1] = g->F_mesh[k][2] = 0;
   memset(g->f_sum, 0, sizeof(double) * 3 * (size_t)g->nt);
@@ -586,18 +594,32 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
     SA_CHECK(dem_bridge_run(g->b, n));
     g->t_dem += sa_time_now() - t0;
     t0 = sa_time_now();
-    SA_CHECK(dem_bridge_mesh_forces(g->b, g->mesh_id[M_WALL], g->f_tri));
-    for (int k = 0; k < 3 * g->nt; k++) g->f_sum[k] += g->f_tri[k];
-    for (int m = 0; m < N_MESH; m++) {
-      if (m != M_WALL)
-        SA_CHECK(dem_bridge_mesh_forces(g->b, g->mesh_id[m], g->mesh_f[m]));
-      const double *f = m == M_WALL ? g->f_tri : g->mesh_f[m];
-      for (int q = 0; q < g->mesh_nt[m]; q++)
-        for (int d = 0; d < 3; d++) g->F_mesh[m][d] += f[3 * q + d];
+    if (par) /* each rank adds up its own triangles; summed over the ranks once, below */
+      SA_CHECK(dem_bridge_mesh_forces_add(g->b));
+    else {
+      SA_CHECK(dem_bridge_mesh_forces(g->b, g->mesh_id[M_WALL], g->f_tri));
+      for (int k = 0; k < 3 * g->nt; k++) g->f_sum[k] += g->f_tri[k];
+      for (int m = 0; m < N_MESH; m++) {
+        if (m != M_WALL)
+          SA_CHECK(dem_bridge_mesh_forces(g->b, g->mesh_id[m], g->mesh_f[m]));
+        const double *f = m == M_WALL ? g->f_tri : g->mesh_f[m];
+        for (int q = 0; q < g->mesh_nt[m]; q++)
+          for (int d = 0; d < 3; d++) g->F_mesh[m][d] += f[3 * q + d];
+      }
     }
     nsamp++;
     g->t_exchange += sa_time_now() - t0;
     done += n;
+  }
+  if (par) { /* the sums over the step, from every rank */
+    double t0 = sa_time_now();
+    for (int m = 0; m < N_MESH; m++) {
+      double *f = m == M_WALL ? g->f_sum : g->mesh_f[m];
+      SA_CHECK(dem_bridge_mesh_forces_take(g->b, g->mesh_id[m], f));
+      for (int q = 0; q < g->mesh_nt[m]; q++)
+        for (int d = 0; d < 3; d++) g->F_mesh[m][d] += f[3 * q + d];
+    }
+    g->t_exchange += sa_time_now() - t0;
   }
   if (wall_every > 1 && !g->rigid) { /* the step ends with the wall where the FEM put it */
     double t0 = sa_time_now();
@@ -1116,8 +1138,9 @@ static int write_summary(Run *g, double s_reached, const char *status, double wa
           status, s_reached, g->angle, g->piston_force,
           fem_solver_cavity_volume(g->s) / g->V0 - 1, g->phi0, g->phi, g->overlap, g->balance,
           g->n_grains, g->inertial, g->inertial_max);
-  fprintf(fp, "\n[dem]\ntime_step = %.6g ; s\nyoung_used = %.6g ; Pa\n", g->dt,
-          g->sc->grains.young / g->sc->grains.softening);
+  fprintf(fp, "\n[dem]\ntime_step = %.6g ; s\nyoung_used = %.6g ; Pa\nmpi_ranks = %d ; LIGGGHTS' "
+          "domains (mpirun -np)\n", g->dt, g->sc->grains.young / g->sc->grains.softening,
+          dem_par_size());
   fprintf(fp, "\n[timing]\nwall = %.3f ; s\n"
           "cpu = %.3f ; s (this process, user + system, all threads)\n"
           "dem = %.3f ; s\nexchange = %.3f ; s\nfem = %.3f ; s\n"
@@ -1375,7 +1398,11 @@ int dem_granular_run(const DemScene *sc, const SaRun *run) {
   g.dynamic = !strcmp(sc->coupling.scheme, "dynamic");
   g.rigid = !strcmp(sc->coupling.scheme, "rigid");
   double t_start = sa_time_now(), s_reached = 0;
-  int rc = setup_fem(&g);
+  int rc = dem_par_start();
+  if (!rc && dem_par_size() > 1)
+    sa_log(SA_LOG_INFO, "dem", "LIGGGHTS on %d MPI ranks (the FEM and the coupling on rank 0)",
+           dem_par_size());
+  if (!rc) rc = setup_fem(&g);
   if (sc->coupling.resume) {
     char dem[SA_STR_MAX];
     double *xw_wall = NULL;
@@ -1427,6 +1454,16 @@ int dem_granular_run(const DemScene *sc, const SaRun *run) {
     if (!sa_run_path(run, "checkpoint/step.ckpt", ck)) remove(ck);
     else sa_error_clear();
   }
-  run_free(&g);
+  run_free(&g); /* destroys the bridge on every rank */
+  dem_par_release();
+  dem_par_finish();
   return rc ? sa_error_push(rc, __func__, __FILE__, __LINE__) : 0;
+}
+
+int dem_granular_follow(const DemScene *sc) {
+  (void)sc; /* a follower makes the lead's calls; the case only had to validate alike */
+  int rc = dem_par_start();
+  if (!rc) rc = dem_bridge_follow();
+  dem_par_finish();
+  return rc;
 }

@@ -157,6 +157,11 @@ static const SaParam dem_params[] = {
      "random seed of the pour (LIGGGHTS wants a prime > 10000)"},
     {"check_every", SA_PARAM_INT, P(check_every), "-", "10", 1, 100000, 0, NULL,
      "coupling steps between the tunnelling checks (grains inside the bore)"},
+    {"mpi_ranks", SA_PARAM_INT, P(mpi_ranks), "-", "1", 1, 64, 0, NULL,
+     "MPI ranks LIGGGHTS is decomposed over (the bore cut along y = 0 into slabs; the FEM, "
+     "coupling and output stay on rank 0): > 1 starts softact again under `mpirun -np N "
+     "--bind-to none` (Open MPI's root check waived for root), unless it already runs under "
+     "mpirun, whose -np then counts (docs/dem.md, \"MPI scale-out\")"},
 };
 #undef P
 
@@ -271,6 +276,24 @@ static int dem_run(void *scene, SaRun *run) {
   return fn(scene, run);
 }
 
+/* The MPI ranks the case asks for (apps/softact.c starts them). */
+static int dem_ranks(const void *scene) { return ((const DemScene *)scene)->dem.mpi_ranks; }
+
+/* A follower rank of an MPI job: the plugin's follower loop (dem_parallel.h). */
+static int dem_follow(void *scene) {
+  const char *path = getenv("SOFTACT_DEM_PLUGIN");
+#ifdef SOFTACT_DEM_PLUGIN
+  if (!path || !path[0]) path = SOFTACT_DEM_PLUGIN;
+#endif
+  SA_REQUIRE(path && path[0], SA_ERR_LIBRARY, "this softact was built without the DEM plugin");
+  void *h = dlopen(path, RTLD_NOW | RTLD_GLOBAL);
+  SA_REQUIRE(h, SA_ERR_LIBRARY, "cannot load the FEM-DEM plugin %s: %s", path, dlerror());
+  int (*fn)(const DemScene *);
+  *(void **)&fn = dlsym(h, DEM_GRANULAR_FOLLOW_SYMBOL);
+  SA_REQUIRE(fn, SA_ERR_LIBRARY, "%s has no %s", path, DEM_GRANULAR_FOLLOW_SYMBOL);
+  return fn(scene);
+}
+
 /* A resumed run continues its own results folder (checkpoint/, the VTK files of the first part). */
 static int dem_resumes(const void *scene) { return ((const DemScene *)scene)->coupling.resume; }
 
@@ -286,4 +309,6 @@ const SaModule dem_module = {
     .run = dem_run,
     .destroy = dem_destroy,
     .resumes = dem_resumes,
+    .follow = dem_follow,
+    .ranks = dem_ranks,
 };

@@ -35,7 +35,7 @@ typedef struct {
 typedef struct {
   double dt_fraction, skin, settle_speed, max_overlap, balance_tol, settle_time_max;
   double pour_softening, pour_speed, pour_friction, pour_skin;
-  int seed, check_every;
+  int seed, check_every, mpi_ranks;
 } DemNumericsCase;
 
 typedef struct {
@@ -51,6 +51,10 @@ typedef struct {
 typedef int (*DemGranularRunFn)(const DemScene *sc, const SaRun *run);
 #define DEM_GRANULAR_RUN_SYMBOL "dem_granular_run"
 int dem_granular_run(const DemScene *sc, const SaRun *run);
+/* A follower rank of `mpirun -np N softact run` (rank > 0): LIGGGHTS' share of the lead's run,
+ * nothing else (dem_parallel.h). */
+#define DEM_GRANULAR_FOLLOW_SYMBOL "dem_granular_follow"
+int dem_granular_follow(const DemScene *sc);
 
 /* Rayleigh time step of a Hertz contact [s] (Li, Xu & Thornton 2005):
  * pi R sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)). */

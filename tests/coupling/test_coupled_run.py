@@ -48,7 +48,9 @@ with tempfile.TemporaryDirectory() as tmp:
     # 5 preload + 3 stroke steps; a checkpoint after step 6 (one stroke step)
     # softening 1000 (the scene uses 100): the pour at the 3.2x larger time step keeps this CI
     # test near 3 min; the machinery and the checks are the same
-    args = [exe, "run", case, "--out", out, "--quiet", "--set", "grains.softening=1000",
+    # one process (the scene's default is two MPI ranks: test_coupled_run_mpi.py runs those)
+    args = [exe, "run", case, "--out", out, "--quiet", "--set", "dem.mpi_ranks=1",
+            "--set", "grains.softening=1000",
             "--set", "grains.diameter=3e-3", "--set", "piston.stroke=7.5e-4",
             "--set", "coupling.vtk_every=0", "--set", "run.plots=false",
             "--set", "coupling.checkpoint_every=6", "--set", "coupling.checkpoint_poured=true"]

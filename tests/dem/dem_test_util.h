@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "dem.h"
+#include "dem_parallel.h"
 #include "sa_error.h"
 
 /* Exit with the error trace if a bridge call fails. */
@@ -23,6 +24,26 @@
   } while (0)
 
 static int t_failures;
+
+/* Under `mpirun -np N` (the tests named *_mpi): MPI started, and a follower rank makes rank 0's
+ * bridge calls (dem_bridge_follow) and exits here; rank 0 runs the test. One rank: nothing. */
+static inline void t_mpi_begin(void) {
+  if (dem_par_size() <= 1) return;
+  if (dem_par_start()) {
+    sa_error_print();
+    exit(1);
+  }
+  if (!dem_par_following()) return;
+  int rc = dem_bridge_follow();
+  dem_par_finish();
+  exit(rc ? 1 : 0);
+}
+
+/* Rank 0, after its last bridge is destroyed: release the followers, stop MPI. */
+static inline void t_mpi_end(void) {
+  dem_par_release();
+  dem_par_finish();
+}
 
 /* |a - b| <= atol + rtol |b|, else report. */
 static inline void t_close(const char *what, double a, double b, double atol, double rtol) {

@@ -25,12 +25,16 @@
  * everywhere), which is why the mobilised value is used.
  * The depth origin is the equivalent height H = N m / (rho_b A), rho_b measured in the middle
  * of the bed. Costs (DEM_TEST_VERBOSE=1): set_mesh_nodes and mesh_forces on the 4000-triangle
- * tube, particle-steps per second. */
+ * tube, particle-steps per second.
+ * Under `mpirun -np 2` (test dem_janssen_mpi) LIGGGHTS splits the tube along y = 0 (one half
+ * of the bed per rank, dem_bridge_set_processors): the same checks hold for the gathered grains
+ * and the wall forces summed over the ranks. */
 #include "dem_test_util.h"
 
 #define NBIN 12
 
 int main(void) {
+  t_mpi_begin();
   DemParams p;
   t_params(&p);
   const double d = 2e-3, Rg = 0.5 * d, D = 8 * d, Rt = 0.5 * D, Htube = 0.12, g = 9.81;
@@ -52,6 +56,7 @@ int main(void) {
 
   DemBridge *b = NULL;
   T_CHECK(dem_bridge_create(t_log(), &b));
+  if (dem_par_size() > 1) T_CHECK(dem_bridge_set_processors(b, 1, dem_par_size(), 1));
   T_CHECK(dem_bridge_setup(b, &p));
   double *txyz, *fxyz;
   int *ttri, *ftri, tnv, tnt, fnv, fnt, tube, floor_id;
@@ -116,12 +121,26 @@ int main(void) {
   double *ft = calloc(3 * (size_t)tnt, sizeof *ft), *ff = calloc(3 * (size_t)fnt, sizeof *ff);
   double *ft1 = malloc(3 * (size_t)tnt * sizeof *ft1), *ff1 = malloc(3 * (size_t)fnt * sizeof *ff1);
   const int navg = 200;
+  double *st = calloc(3 * (size_t)tnt, sizeof *st), *sf = calloc(3 * (size_t)fnt, sizeof *sf);
   for (int s = 0; s < navg; s++) {
     T_CHECK(dem_bridge_run(b, 1));
     T_CHECK(dem_bridge_mesh_forces(b, tube, ft1));
     T_CHECK(dem_bridge_mesh_forces(b, floor_id, ff1));
-    for (int i = 0; i < 3 * tnt; i++) ft[i] += ft1[i] / navg;
-    for (int i = 0; i < 3 * fnt; i++) ff[i] += ff1[i] / navg;
+    T_CHECK(dem_bridge_mesh_forces_add(b));
+    for (int i = 0; i < 3 * tnt; i++) ft[i] += ft1[i] / navg, st[i] += ft1[i];
+    for (int i = 0; i < 3 * fnt; i++) ff[i] += ff1[i] / navg, sf[i] += ff1[i];
+  }
+  /* the bridge's running sums (each rank its own triangles, added over the ranks once) against
+   * the sums of the forces read every step: equal, up to the order of the additions */
+  {
+    double *at = malloc(3 * (size_t)tnt * sizeof *at), *af = malloc(3 * (size_t)fnt * sizeof *af);
+    T_CHECK(dem_bridge_mesh_forces_take(b, tube, at));
+    T_CHECK(dem_bridge_mesh_forces_take(b, floor_id, af));
+    double e = 0, scale = 0;
+    for (int i = 0; i < 3 * tnt; i++) e = fmax(e, fabs(at[i] - st[i])), scale = fmax(scale, fabs(st[i]));
+    for (int i = 0; i < 3 * fnt; i++) e = fmax(e, fabs(af[i] - sf[i])), scale = fmax(scale, fabs(sf[i]));
+    t_true("running force sums (dem_bridge_mesh_forces_add/_take) = per-step sums", e <= 1e-12 * scale);
+    free(at), free(af), free(st), free(sf);
   }
   n = dem_bridge_count(b);
   t_true("no grain lost", n == NGRAIN);
@@ -198,9 +217,9 @@ int main(void) {
   double t_ov = t_now() - c0;
 
   if (t_verbose()) {
-    printf("janssen: N %d, rho_b %.1f kg/m^3 (solid fraction %.3f), H %.4f m = %.2f D, "
+    printf("janssen on %d MPI rank(s): N %d, rho_b %.1f kg/m^3 (solid fraction %.3f), H %.4f m = %.2f D, "
            "steps %ld (%.3f s)\n",
-           n, rho_b, rho_b / p.density, H, H / D, steps, steps * p.dt);
+           dem_par_size(), n, rho_b, rho_b / p.density, H, H / D, steps, steps * p.dt);
     printf("  weight %.5g N, floor %.5g N (%.1f %%), wall friction %.5g N, balance error %.3g %%\n", W,
            F_floor, 100 * F_floor / W, F_wall, 100 * ((F_floor + F_wall) / W - 1));
     printf("  wall normal %.5g N, mobilised friction %.4f (mu_w %.2f)\n", N_wall, mu_m, mu_w);
@@ -225,5 +244,6 @@ int main(void) {
   free(vz), free(x), free(ft), free(ff), free(ft1), free(ff1);
   free(txyz), free(ttri), free(fxyz), free(ftri);
   dem_bridge_destroy(&b);
+  t_mpi_end();
   return t_failures ? 1 : 0;
 }
