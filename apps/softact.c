@@ -5,6 +5,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "fem_blas.h"
@@ -108,8 +111,21 @@ static void launcher_rank(int *rank, int *size) {
 /* This program again, under `mpirun -np n --bind-to none` with the same arguments: the scene
  * asked for n MPI ranks (sa_module.h `ranks`). No binding: rank 0's FEM threads use every core
  * while the other ranks wait. Open MPI refuses root unless told: a container's root is the
- * usual case here, so the two variables that say so are set (never overriding a user's). Returns
- * only if mpirun could not be started. */
+ * usual case here, so the two variables that say so are set (never overriding a user's).
+ * Signals: mpirun answers SIGINT/SIGTERM by killing its ranks (SIGTERM, then SIGKILL a moment
+ * later, its own output relay already closing), which would lose the interrupted run's
+ * checkpoint and summary. So mpirun runs as a child in its own process group (a terminal's ^C
+ * reaches only this process), without stdin, and this process passes SIGINT, SIGTERM and
+ * SIGHUP on as SIGUSR1, which mpirun forwards to every rank, where it stops the run like
+ * SIGINT (sa_signals_install). Exits with mpirun's status (rank 0's: 3 when interrupted).
+ * Returns only if mpirun could not be started. */
+static volatile sig_atomic_t mpirun_pid;
+
+static void pass_signal_to_mpirun(int sig) {
+  (void)sig;
+  if (mpirun_pid > 0) kill((pid_t)mpirun_pid, SIGUSR1);
+}
+
 static int relaunch_under_mpirun(const Args *a, int n) {
   char exe[4096];
   ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
@@ -117,11 +133,11 @@ static int relaunch_under_mpirun(const Args *a, int n) {
   exe[len] = 0;
   char np[16];
   snprintf(np, sizeof np, "%d", n);
-  char **v = calloc((size_t)a->argc + 8, sizeof *v);
+  char **v = calloc((size_t)a->argc + 10, sizeof *v);
   SA_REQUIRE(v, SA_ERR_MEMORY, "cannot allocate the mpirun command line");
   int k = 0;
   v[k++] = "mpirun", v[k++] = "-np", v[k++] = np, v[k++] = "--bind-to", v[k++] = "none";
-  v[k++] = exe;
+  v[k++] = "--stdin", v[k++] = "none", v[k++] = exe;
   for (int i = 1; i < a->argc; i++) v[k++] = a->argv[i];
   v[k] = NULL;
   if (geteuid() == 0) {
@@ -132,12 +148,50 @@ static int relaunch_under_mpirun(const Args *a, int n) {
          a->case_path, n, n, exe);
   fflush(stdout);
   fflush(stderr);
-  execvp("mpirun", v);
-  int e = errno;
+  int pipefd[2]; /* the child reports a failed exec through it (close-on-exec) */
+  SA_REQUIRE(pipe(pipefd) == 0, SA_ERR_IO, "cannot start mpirun: %s", strerror(errno));
+  fcntl(pipefd[1], F_SETFD, FD_CLOEXEC);
+  pid_t pid = fork();
+  if (pid < 0) {
+    free(v);
+    return SA_ERROR(SA_ERR_IO, "cannot start mpirun: %s", strerror(errno));
+  }
+  if (pid == 0) {
+    close(pipefd[0]);
+    setpgid(0, 0);
+    signal(SIGINT, SIG_DFL), signal(SIGTERM, SIG_DFL), signal(SIGHUP, SIG_DFL);
+    signal(SIGPIPE, SIG_DFL);
+    execvp("mpirun", v);
+    int e = errno;
+    ssize_t w = write(pipefd[1], &e, sizeof e);
+    (void)w;
+    _exit(127);
+  }
+  close(pipefd[1]);
   free(v);
-  return SA_ERROR(SA_ERR_LIBRARY, "%s: [dem] mpi_ranks = %d, but mpirun cannot be started (%s): "
-                  "install Debian's openmpi-bin, or set mpi_ranks = 1", a->case_path, n,
-                  strerror(e));
+  int e = 0;
+  ssize_t got;
+  while ((got = read(pipefd[0], &e, sizeof e)) < 0 && errno == EINTR) {
+  }
+  close(pipefd[0]);
+  if (got == (ssize_t)sizeof e) {
+    while (waitpid(pid, NULL, 0) < 0 && errno == EINTR) {
+    }
+    return SA_ERROR(SA_ERR_LIBRARY, "%s: [dem] mpi_ranks = %d, but mpirun cannot be started "
+                    "(%s): install Debian's openmpi-bin, or set mpi_ranks = 1", a->case_path, n,
+                    strerror(e));
+  }
+  mpirun_pid = pid;
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = pass_signal_to_mpirun;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL), sigaction(SIGTERM, &sa, NULL), sigaction(SIGHUP, &sa, NULL);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  fflush(stdout);
+  exit(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status));
 }
 
 static int run_case(const Args *a) {

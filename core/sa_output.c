@@ -197,7 +197,9 @@ static void sa_on_signal(int sig) {
  * they would kill the process and leave the temporaries. With SIGPIPE handled, a write to a
  * closed pipe fails with EPIPE instead of killing us; stdio then just records the error. */
 void sa_signals_install(void) {
-  static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+  /* SIGUSR1: what a softact that started mpirun passes on for SIGINT/SIGTERM/SIGHUP (mpirun
+   * forwards it to every rank; apps/softact.c relaunch_under_mpirun) */
+  static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGUSR1};
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = sa_on_signal;
