@@ -257,10 +257,11 @@ static void dem_destroy(void **scene) {
   *scene = NULL;
 }
 
-/* Load the plugin and run. Its path is fixed at build time (SOFTACT_DEM_PLUGIN); the
- * environment variable SOFTACT_DEM_PLUGIN overrides it. RTLD_GLOBAL: OpenMPI loads its own
- * components with dlopen and needs libmpi's symbols global. */
-static int dem_run(void *scene, SaRun *run) {
+/* The plugin's function `symbol` (the plugin loaded on first use). Its path is fixed at build
+ * time (SOFTACT_DEM_PLUGIN); the environment variable SOFTACT_DEM_PLUGIN overrides it.
+ * RTLD_GLOBAL: OpenMPI loads its own components with dlopen and needs libmpi's symbols global.
+ * The plugin stays loaded: LIGGGHTS/OpenMPI do not support being unloaded. */
+static int plugin_symbol(const char *symbol, void **fn) {
   const char *path = getenv("SOFTACT_DEM_PLUGIN");
 #ifdef SOFTACT_DEM_PLUGIN
   if (!path || !path[0]) path = SOFTACT_DEM_PLUGIN;
@@ -268,11 +269,16 @@ static int dem_run(void *scene, SaRun *run) {
   SA_REQUIRE(path && path[0], SA_ERR_LIBRARY, "this softact was built without the DEM plugin");
   void *h = dlopen(path, RTLD_NOW | RTLD_GLOBAL);
   SA_REQUIRE(h, SA_ERR_LIBRARY, "cannot load the FEM-DEM plugin %s: %s", path, dlerror());
-  DemGranularRunFn fn;
-  *(void **)&fn = dlsym(h, DEM_GRANULAR_RUN_SYMBOL);
-  SA_REQUIRE(fn, SA_ERR_LIBRARY, "%s has no %s", path, DEM_GRANULAR_RUN_SYMBOL);
+  *fn = dlsym(h, symbol);
+  SA_REQUIRE(*fn, SA_ERR_LIBRARY, "%s has no %s", path, symbol);
   sa_log(SA_LOG_DEBUG, "dem", "loaded %s", path);
-  /* the plugin stays loaded: LIGGGHTS/OpenMPI do not support being unloaded */
+  return 0;
+}
+
+/* Load the plugin and run. */
+static int dem_run(void *scene, SaRun *run) {
+  DemGranularRunFn fn;
+  SA_CHECK(plugin_symbol(DEM_GRANULAR_RUN_SYMBOL, (void **)&fn));
   return fn(scene, run);
 }
 
@@ -281,16 +287,8 @@ static int dem_ranks(const void *scene) { return ((const DemScene *)scene)->dem.
 
 /* A follower rank of an MPI job: the plugin's follower loop (dem_parallel.h). */
 static int dem_follow(void *scene) {
-  const char *path = getenv("SOFTACT_DEM_PLUGIN");
-#ifdef SOFTACT_DEM_PLUGIN
-  if (!path || !path[0]) path = SOFTACT_DEM_PLUGIN;
-#endif
-  SA_REQUIRE(path && path[0], SA_ERR_LIBRARY, "this softact was built without the DEM plugin");
-  void *h = dlopen(path, RTLD_NOW | RTLD_GLOBAL);
-  SA_REQUIRE(h, SA_ERR_LIBRARY, "cannot load the FEM-DEM plugin %s: %s", path, dlerror());
   int (*fn)(const DemScene *);
-  *(void **)&fn = dlsym(h, DEM_GRANULAR_FOLLOW_SYMBOL);
-  SA_REQUIRE(fn, SA_ERR_LIBRARY, "%s has no %s", path, DEM_GRANULAR_FOLLOW_SYMBOL);
+  SA_CHECK(plugin_symbol(DEM_GRANULAR_FOLLOW_SYMBOL, (void **)&fn));
   return fn(scene);
 }
 
