@@ -127,6 +127,11 @@ static void pass_signal_to_mpirun(int sig) {
 }
 
 static int relaunch_under_mpirun(const Args *a, int n) {
+  /* more ranks than cores: mpirun would refuse (no slots), and ranks that share a core spin
+   * against each other in every collective */
+  long cores = sysconf(_SC_NPROCESSORS_ONLN);
+  SA_REQUIRE(cores < 1 || n <= cores, SA_ERR_INPUT, "%s: [dem] mpi_ranks = %d is more than the %ld "
+             "cores of this machine (allowed: 1..%ld)", a->case_path, n, cores, cores);
   char exe[4096];
   ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
   SA_REQUIRE(len > 0, SA_ERR_IO, "cannot find this program's path to start it under mpirun");

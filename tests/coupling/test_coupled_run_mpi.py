@@ -10,7 +10,8 @@ References independent of the coupling code, as in test_coupled_run.py:
  - summary.ini says mpi_ranks = 2 and the log names the two ranks.
 And a resume from the mid-run checkpoint (LIGGGHTS' restart written by rank 0 from both
 ranks' grains, read back and redistributed) ends with the same bending.csv, bit for bit; and
-bad input found after the relaunch exits 1 with its message, leaving nothing."""
+bad input found after the relaunch exits 1 with its message, leaving nothing; more ranks than
+cores are refused before mpirun starts."""
 import csv, math, os, shutil, subprocess, sys, tempfile
 
 
@@ -79,6 +80,14 @@ with tempfile.TemporaryDirectory() as tmp:
                        timeout=300)
     if r.returncode != 1 or "no earlier run to continue" not in r.stderr or os.path.exists(none):
         fails.append(f"bad input under mpirun: exit {r.returncode}, stderr {r.stderr[-800:]}")
+    # more ranks than cores: refused before mpirun starts, naming the key and the range
+    many = os.path.join(tmp, "many")
+    r = subprocess.run([exe, "run", case, "--out", many, "--set",
+                        f"dem.mpi_ranks={os.cpu_count() + 1}"], capture_output=True, text=True,
+                       timeout=120)
+    if r.returncode != 1 or "mpi_ranks" not in r.stderr or "allowed: 1.." not in r.stderr \
+            or os.path.exists(many):
+        fails.append(f"too many ranks: exit {r.returncode}, stderr {r.stderr[-400:]}")
     for f in fails:
         print(f)
     sys.exit(1 if fails else 0)
