@@ -1,5 +1,7 @@
-/* dem_bridge.c - the LIGGGHTS bridge: a serial LIGGGHTS instance driven through its C library
- * interface (library.h), wall meshes moved node by node through dem_shim.cpp.
+/* dem_bridge.c - the LIGGGHTS bridge: a LIGGGHTS instance driven through its C library
+ * interface (library.h), serial or this rank's part of a domain-decomposed one (the section
+ * "several MPI ranks" at the end, dem_parallel.h), wall meshes moved node by node through
+ * dem_shim.cpp.
  *
  * Contact model (LIGGGHTS `model hertz tangential history [rolling_friction epsd2]`): Hertz
  * normal force F = 4/3 E* sqrt(R*) delta^1.5 with viscous damping set from the restitution,
@@ -1917,6 +1919,10 @@ enum {
 static int leads(const DemBridge *b) { return b && b->np > 1 && b->rank == 0; }
 static int parallel(const DemBridge *b) { return b && b->np > 1; }
 
+/* Bytes of string s with its terminator (0 for NULL: the follower then receives NULL too, and
+ * fails on it as the lead does; a call is always broadcast, so that both agree). */
+static size_t slen(const char *s) { return s ? strlen(s) + 1 : 0; }
+
 /* Broadcast call op with integers i[0..ni), reals d[0..nd) and buffers p[k] of n[k] bytes. */
 static void lead_call(int op, int ni, const int *i, int nd, const double *d, const void *p0,
                       size_t n0, const void *p1, size_t n1, const void *p2, size_t n2) {
@@ -1980,13 +1986,13 @@ void dem_bridge_destroy(DemBridge **pb) {
 }
 
 int dem_bridge_log_append(DemBridge *b, const char *path) {
-  if (leads(b) && path) lead_call(OP_LOG_APPEND, 0, NULL, 0, NULL, path, strlen(path) + 1, NULL, 0, NULL, 0);
+  if (leads(b)) lead_call(OP_LOG_APPEND, 0, NULL, 0, NULL, path, slen(path), NULL, 0, NULL, 0);
   int rc = log_append_here(b, path);
   return parallel(b) ? dem_par_agree(rc) : rc;
 }
 
 int dem_bridge_command(DemBridge *b, const char *cmd) {
-  if (leads(b) && cmd) lead_call(OP_COMMAND, 0, NULL, 0, NULL, cmd, strlen(cmd) + 1, NULL, 0, NULL, 0);
+  if (leads(b)) lead_call(OP_COMMAND, 0, NULL, 0, NULL, cmd, slen(cmd), NULL, 0, NULL, 0);
   return command_here(b, cmd);
 }
 
@@ -2006,16 +2012,16 @@ int dem_bridge_set_processors(DemBridge *b, int px, int py, int pz) {
 }
 
 int dem_bridge_setup(DemBridge *b, const DemParams *params) {
-  if (leads(b) && params) lead_call(OP_SETUP, 0, NULL, 0, NULL, params, sizeof *params, NULL, 0, NULL, 0);
+  if (leads(b)) lead_call(OP_SETUP, 0, NULL, 0, NULL, params, sizeof *params, NULL, 0, NULL, 0);
   int rc = setup_here(b, params);
   return parallel(b) ? dem_par_agree(rc) : rc;
 }
 
 int dem_bridge_setup_from_checkpoint(DemBridge *b, const DemParams *params, const char *path,
                                      int expected_count) {
-  if (leads(b) && params && path)
-    lead_call(OP_SETUP_CK, 1, &expected_count, 0, NULL, params, sizeof *params, path,
-              strlen(path) + 1, NULL, 0);
+  if (leads(b))
+    lead_call(OP_SETUP_CK, 1, &expected_count, 0, NULL, params, sizeof *params, path, slen(path),
+              NULL, 0);
   int rc = setup_from_checkpoint_here(b, params, path, expected_count);
   return parallel(b) ? dem_par_agree(rc) : rc;
 }
@@ -2259,14 +2265,13 @@ double dem_bridge_max_overlap(DemBridge *b) {
 }
 
 int dem_bridge_write_restart(DemBridge *b, const char *path) {
-  if (leads(b) && path) lead_call(OP_WRITE_RESTART, 0, NULL, 0, NULL, path, strlen(path) + 1, NULL, 0, NULL, 0);
+  if (leads(b)) lead_call(OP_WRITE_RESTART, 0, NULL, 0, NULL, path, slen(path), NULL, 0, NULL, 0);
   int rc = write_restart_here(b, path);
   return parallel(b) ? dem_par_agree(rc) : rc;
 }
 
 int dem_bridge_write_checkpoint(DemBridge *b, const char *path) {
-  if (leads(b) && path)
-    lead_call(OP_WRITE_CK, 0, NULL, 0, NULL, path, strlen(path) + 1, NULL, 0, NULL, 0);
+  if (leads(b)) lead_call(OP_WRITE_CK, 0, NULL, 0, NULL, path, slen(path), NULL, 0, NULL, 0);
   int rc = write_checkpoint_here(b, path);
   return parallel(b) ? dem_par_agree(rc) : rc;
 }

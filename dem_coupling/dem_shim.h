@@ -6,7 +6,8 @@
  * element keeps its id (0-based position in the mesh file) when LIGGGHTS reorders elements,
  * so every function here addresses triangles by that id: idx[3*id + c] is the caller vertex
  * of corner c of the triangle with id `id`, and per-triangle outputs are indexed by id.
- * Serial LIGGGHTS only (no ghost elements are written back). No function allocates. */
+ * On several MPI ranks each function sees this rank's triangles (owned; set_nodes also writes
+ * the ghost copies); dem_bridge.c combines the ranks. No function allocates. */
 #ifndef DEM_SHIM_H
 #define DEM_SHIM_H
 
