@@ -17,18 +17,8 @@ path, so any state left out of the checkpoint shows). References independent of 
 Then the same checkpoint resumed with an overlap limit no bed meets: the coupling refuses every
 pass but the last and the run check stops the run with its named diagnosis."""
 import csv, math, os, shutil, subprocess, sys, tempfile
-
-
-
-def read_summary(folder):
-    """summary.ini's keys (sections flattened), values without their comments."""
-    keys = {}
-    for line in open(os.path.join(folder, "summary.ini")):
-        line = line.split(";")[0].strip()
-        if "=" in line:
-            k, v = [x.strip() for x in line.split("=", 1)]
-            keys[k] = v
-    return keys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from coupled_run_util import read_summary, resume_differs
 
 
 def balance_fails(rows, W, label):
@@ -82,19 +72,7 @@ with tempfile.TemporaryDirectory() as tmp:
     if "checkpoint after coupling step 0 " not in open(os.path.join(out, "softact.log")).read():
         fails.append("checkpoint_poured: no checkpoint of the poured bed in softact.log")
     # resume from the checkpoint in a copy of the results: same rows, bit for bit
-    out2 = os.path.join(tmp, "resumed")
-    shutil.copytree(out, out2)
-    os.remove(os.path.join(out2, "bending.csv"))
-    args2 = [a if a != out else out2 for a in args] + ["--set", "coupling.resume=true"]
-    r = subprocess.run(args2, capture_output=True, text=True, timeout=1500)
-    if r.returncode != 0:
-        fails.append(f"resumed run failed: {r.returncode} {r.stderr[-1500:]}")
-    else:
-        a = open(os.path.join(out, "bending.csv")).read().splitlines()
-        b = open(os.path.join(out2, "bending.csv")).read().splitlines()
-        if a != b:
-            fails.append("resumed run differs from the run that went on:\n" +
-                         "\n".join(f"  {x}\n  {y}" for x, y in zip(a, b) if x != y))
+    fails += resume_differs(args, out, tmp, 1500)
     # the scene iterates every step (rollback of DEM and FEM, IQN-ILS): 8 steps, each with at
     # least one pass and none left unconverged; the resume above covers the iterated path
     if int(summ.get("iterated_steps", 0)) != 8 or int(summ.get("unconverged_steps", 1)) != 0:

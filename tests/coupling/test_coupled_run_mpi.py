@@ -12,17 +12,9 @@ And a resume from the mid-run checkpoint (LIGGGHTS' restart written by rank 0 fr
 ranks' grains, read back and redistributed) ends with the same bending.csv, bit for bit; and
 bad input found after the relaunch exits 1 with its message, leaving nothing; more ranks than
 cores are refused before mpirun starts."""
-import csv, math, os, shutil, subprocess, sys, tempfile
-
-
-def read_summary(folder):
-    keys = {}
-    for line in open(os.path.join(folder, "summary.ini")):
-        line = line.split(";")[0].strip()
-        if "=" in line:
-            k, v = [x.strip() for x in line.split("=", 1)]
-            keys[k] = v
-    return keys
+import csv, math, os, subprocess, sys, tempfile
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from coupled_run_util import read_summary, resume_differs
 
 
 exe, case = sys.argv[1], sys.argv[2]
@@ -59,19 +51,7 @@ with tempfile.TemporaryDirectory() as tmp:
     if len(rows) != 3 or float(rows[-1]["piston_force"]) <= float(rows[0]["piston_force"]):
         fails.append("piston force does not grow with the displacement: "
                      + ", ".join(r["piston_force"] for r in rows))
-    out2 = os.path.join(tmp, "resumed")
-    shutil.copytree(out, out2)
-    os.remove(os.path.join(out2, "bending.csv"))
-    args2 = [a if a != out else out2 for a in args] + ["--set", "coupling.resume=true"]
-    r = subprocess.run(args2, capture_output=True, text=True, timeout=1200)
-    if r.returncode != 0:
-        fails.append(f"resumed run failed: {r.returncode} {r.stderr[-1500:]}")
-    else:
-        a = open(os.path.join(out, "bending.csv")).read().splitlines()
-        b = open(os.path.join(out2, "bending.csv")).read().splitlines()
-        if a != b:
-            fails.append("resumed run differs from the run that went on:\n" +
-                         "\n".join(f"  {x}\n  {y}" for x, y in zip(a, b) if x != y))
+    fails += resume_differs(args, out, tmp, 1200)
     # bad input found on rank 0 after the relaunch (a resume with no earlier run): the named
     # error, exit 1 (rank 0's status, passed on by mpirun), nothing made
     none = os.path.join(tmp, "none")
