@@ -114,10 +114,11 @@ typedef struct {
                       * ls_memory accepted iterates (1 = monotone; > 1 non-monotone, Grippo,
                       * Lampariello and Lucidi 1986; at most 8) */
   FemIndefinite indefinite; /* not positive definite tangent: LU or modified Cholesky */
-  int krylov_max;    /* > 0: a Newton direction is first sought by preconditioned CG on the
-                      * current tangent with the last Cholesky factors as preconditioner, up
-                      * to krylov_max iterations, before refactorising (0 = off) */
-  double krylov_rtol; /* PCG stop: |K du + R| <= krylov_rtol |R| (inexact Newton) */
+  int krylov_max;    /* > 0: a Newton direction is first sought by a Krylov method on the
+                      * current tangent with the last factors as preconditioner, up to
+                      * krylov_max iterations, before refactorising (0 = off): PCG on Cholesky
+                      * factors of a symmetric tangent, GMRES otherwise (fem_gmres.h) */
+  double krylov_rtol; /* Krylov stop: |K du + R| <= krylov_rtol |R| (inexact Newton) */
 } FemSolverParams;
 
 FemSolverParams fem_solver_params_default(void);
@@ -173,7 +174,9 @@ typedef struct {
   int n_indef_backtrack;    /* step-backs: the tangent at an iterate was indefinite (modify) */
   int n_krylov;             /* Newton directions from PCG on the last factors */
   int n_krylov_it;          /* PCG iterations (each a product with K and a factor solve) */
-  int n_krylov_fail;        /* PCG attempts abandoned (limit, negative curvature) */
+  int n_krylov_fail;        /* Krylov attempts abandoned (limit, negative curvature, too slow) */
+  int n_gmres;              /* of the Krylov attempts, GMRES ones (unsymmetric tangent or LU
+                             * factors; the others PCG) */
 } FemSolverStats;
 
 /* mesh [borrowed, must outlive the solver]; mats [in] one per mesh region (copied). */

@@ -214,7 +214,18 @@ int fem_linsolve_factorize(FemLinSolver *s, const double *values, int symmetric)
   return rc ? sa_error_push(rc, __func__, __FILE__, __LINE__) : 0;
 }
 
+static int solve(FemLinSolver *s, const double *b, double *x, int refine);
+
 int fem_linsolve_solve(FemLinSolver *s, const double *b, double *x) {
+  return solve(s, b, x, 1);
+}
+
+int fem_linsolve_solve_factors(FemLinSolver *s, const double *b, double *x) {
+  return solve(s, b, x, 0);
+}
+
+/* refine: UMFPACK's iterative refinement against s->values (its default, up to 2 steps). */
+static int solve(FemLinSolver *s, const double *b, double *x, int refine) {
   double t0 = sa_time_now();
   if (s->info.kind == FEM_LIN_CHOLMOD) {
     s->B.x = (void *)b;
@@ -223,8 +234,11 @@ int fem_linsolve_solve(FemLinSolver *s, const double *b, double *x) {
     memcpy(x, s->X->x, (size_t)s->n * sizeof *x);
   } else {
     SA_REQUIRE(s->unum, SA_ERR_INTERNAL, "solve without a factorisation");
+    double irstep = s->uctrl[UMFPACK_IRSTEP];
+    if (!refine) s->uctrl[UMFPACK_IRSTEP] = 0;
     SuiteSparse_long st = umfpack_dl_wsolve(UMFPACK_A, s->lp, s->li, s->values, x, b, s->unum,
                                             s->uctrl, s->uinfo, s->uwi, s->uw);
+    s->uctrl[UMFPACK_IRSTEP] = irstep;
     SA_REQUIRE(st == UMFPACK_OK || st == UMFPACK_WARNING_singular_matrix, SA_ERR_LIBRARY,
                "umfpack_dl_wsolve failed (status %ld)", (long)st);
   }

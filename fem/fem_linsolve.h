@@ -46,8 +46,12 @@ int fem_linsolve_create(int n, const int *colptr, const int *rowind, int nthread
  * set) when not positive definite; symmetric = 0: UMFPACK directly. Returns SA_ERR_NOT_SPD (> 0) when even UMFPACK
  * finds the matrix singular. */
 int fem_linsolve_factorize(FemLinSolver *s, const double *values, int symmetric);
-/* Solve A x = b with the last factor. b [in] n, x [out] n (may not alias b). */
+/* Solve A x = b with the last factor. b [in] n, x [out] n (may not alias b). After an LU,
+ * UMFPACK refines the solution against the values given to factorise (up to 2 steps). */
 int fem_linsolve_solve(FemLinSolver *s, const double *b, double *x);
+/* The same with the factors alone, no refinement: a fixed linear operator whatever the values
+ * array now holds, as a Krylov preconditioner needs (and 1/3 of the refined solve's cost). */
+int fem_linsolve_solve_factors(FemLinSolver *s, const double *b, double *x);
 /* max |a_ij - a_ji| / max |a_ij| over the pattern (0 for a symmetric matrix). */
 double fem_linsolve_asymmetry(const FemLinSolver *s, const double *values);
 /* The slot of the transposed entry of each slot [borrowed], colptr[n] entries. */

@@ -898,6 +898,9 @@ static int mc_run(void *scene, SaRun *run) {
       fprintf(fp, "augment_max = %d ; Uzawa updates allowed per step (0 = pure penalty)\n"
               "augment_solves = %d\naugment_unconverged_steps = %d\n", sc->mc.augment,
               o.augments, o.augment_unconverged);
+      fprintf(fp, "krylov_directions = %d ; Newton directions from Krylov on earlier factors\n"
+              "krylov_failed = %d\nkrylov_iterations = %d\n", st.n_krylov, st.n_krylov_fail,
+              st.n_krylov_it);
       fprintf(fp, "assemblies = %d\nassemble_s = %.3f\nfactorisations = %d\ncholesky = %d\n"
               "lu = %d\nfactorise_s = %.3f\nsolves = %d\nsolve_s = %.3f\npattern_rebuilds = %d\n"
               "wall_s = %.3f\nstatus = %s\n", st.n_assemble, st.t_assemble, st.n_factor,

@@ -247,6 +247,23 @@ static int pcg(FemSolver *s, const double *b, double *x, int maxit, double rtol,
   return 1;
 }
 
+/* GMRES' preconditioner: a solve with the held factors. */
+static int precond(void *ctx, const double *r, double *z) {
+  FemSolver *s = ctx;
+  double t0 = sa_time_now();
+  int rc = fem_linsolve_solve_factors(s->dm.lin, r, z);
+  s->st.t_solve += sa_time_now() - t0;
+  s->st.n_solve++;
+  return rc;
+}
+
+/* The tangent in s->as.val is symmetric: no law declares otherwise and its measured asymmetry
+ * is within sym_tol (as factorize() decides). */
+static int tangent_symmetric(FemSolver *s) {
+  if (s->nw.laws_unsym) return 0;
+  return fem_linsolve_asymmetry(s->dm.lin, s->as.val) <= s->prm.sym_tol;
+}
+
 enum { LS_MEMORY_MAX = 8 }; /* largest ls_memory (fem.h) */
 
 /* Iteration state of one substep. */
@@ -391,17 +408,24 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
                       s->as.n_inverted, t->it);
     }
   }
-  /* Krylov on the last Cholesky factors (krylov_max > 0): the tangent of this iterate is
-   * assembled, the factors are of an earlier one; PCG to krylov_rtol, else refactorise. */
+  /* Krylov on the last factors (krylov_max > 0): the tangent of this iterate is assembled,
+   * the factors are of an earlier one; to krylov_rtol, else refactorise. PCG when both are
+   * symmetric (Cholesky factors, a tangent symmetric to sym_tol), GMRES otherwise (LU
+   * factors, or a tangent made unsymmetric by friction or non-associated flow). */
   int krylov = 0, eff_done = 0;
-  if (!use_old && s->prm.krylov_max > 0 && s->nw.have_factors && s->nw.last_sym && !t->vol &&
-      t->it > 0) {
+  if (!use_old && s->prm.krylov_max > 0 && s->nw.have_factors && !t->vol && t->it > 0) {
     if (sk->dynamic) fem_dyn_effective_tangent(s, sk);
     eff_done = 1;
     for (int k = 0; k < nf; k++) s->nw.rhs[k] = -s->nw.R[k];
-    int its = 0;
+    int its = 0, prc;
     double t0 = sa_time_now();
-    int prc = pcg(s, s->nw.rhs, s->nw.da, s->prm.krylov_max, s->prm.krylov_rtol, &its);
+    if (tangent_symmetric(s) && s->nw.last_sym) {
+      prc = pcg(s, s->nw.rhs, s->nw.da, s->prm.krylov_max, s->prm.krylov_rtol, &its);
+    } else {
+      prc = fem_gmres_solve(&s->nw.gm, s->dm.colptr, s->dm.rowind, s->as.val, s->nw.rhs,
+                            s->nw.da, s->prm.krylov_max, s->prm.krylov_rtol, precond, s, &its);
+      s->st.n_gmres++;
+    }
     sa_timing_add("fem krylov", sa_time_now() - t0);
     if (prc < 0) return sa_error_push(prc, __func__, __FILE__, __LINE__);
     s->st.n_krylov_it += its;
@@ -611,7 +635,7 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
     double rate = t.r_prev > 0 ? rnorm / t.r_prev : 0.0;
     const char *lsn = t.ls ? "  (line search)" : "";
     const char *ren = t.it == 0 || t.fresh_last ? ""
-                      : t.krylov_last           ? "  (PCG on earlier factors)"
+                      : t.krylov_last           ? "  (Krylov on earlier factors)"
                                                 : "  (reused factors)";
     if (t.vol)
       sa_log(SA_LOG_DEBUG, "fem", "step %d it %2d |R| %.3e |du| %.3e rate %.3f  p %.6g dV %.2e%s%s",
@@ -659,6 +683,10 @@ int fem_newton_alloc(FemSolver *s) {
                   &s->nw.kr, &s->nw.kz, &s->nw.kp, &s->nw.kq};
   for (size_t i = 0; i < sizeof v / sizeof *v; i++) SA_CALLOC(*v[i], nf);
   SA_CALLOC(s->nw.u_it, s->ndof);
+  /* restart length: at most 40 vectors (memory 41 nfree doubles); the scenes' krylov_max is
+   * 10-30, so one cycle */
+  if (s->prm.krylov_max > 0)
+    SA_CHECK(fem_gmres_alloc(&s->nw.gm, nf, s->prm.krylov_max < 40 ? s->prm.krylov_max : 40));
   int nreg = s->m->nregions > 0 ? s->m->nregions : 1;
   s->nw.laws_unsym = 0;
   for (int r = 0; r < nreg; r++)
@@ -672,4 +700,5 @@ void fem_newton_free(FemNewton *nw) {
   void *p[] = {nw->R, nw->da, nw->db, nw->du, nw->rhs, nw->qf, nw->gf, nw->u_it,
                nw->kr, nw->kz, nw->kp, nw->kq};
   for (size_t i = 0; i < sizeof p / sizeof *p; i++) free(p[i]);
+  fem_gmres_free(&nw->gm);
 }

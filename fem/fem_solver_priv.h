@@ -27,6 +27,7 @@
 #include "fem.h"
 #include "fem_contrib.h"
 #include "fem_linsolve.h"
+#include "fem_gmres.h"
 
 /* Target of one assembly: f_int, q (load per unit pressure), gv = dV/du, fcon (contributors'
  * residual) over all dofs, tangent values val (free-dof pattern; NULL when not wanted) and the
@@ -77,6 +78,7 @@ typedef struct { /* fem_assemble.c */
 typedef struct { /* fem_newton.c */
   double *R, *da, *db, *du, *rhs, *qf, *gf; /* nfree */
   double *kr, *kz, *kp, *kq;                /* PCG work (nfree) */
+  FemGmres gm;    /* GMRES work (krylov_max > 0): directions of an unsymmetric tangent */
   double *u_it;                             /* last accepted Newton iterate (ndof) */
   double p_it;
   int last_sym;   /* symmetric path used at the last factorisation */

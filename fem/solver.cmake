@@ -13,6 +13,7 @@ set(_sa_fem_sources
   ${CMAKE_CURRENT_LIST_DIR}/fem_dofmap.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_assemble.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_newton.c
+  ${CMAKE_CURRENT_LIST_DIR}/fem_gmres.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_continuation.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_dynamics.c
   ${CMAKE_CURRENT_LIST_DIR}/fem_checkpoint.c

@@ -106,8 +106,10 @@ static int surface_reaction(FemSolver *s, const FemMesh *m, const char *surf, do
   return 0;
 }
 
-/* Block pushed along x on a plane (lower == NULL) or on the lower block of m. */
-static int sliding(int on_block, int order) {
+/* Block pushed along x on a plane (lower == NULL) or on the lower block of m. krylov: Newton
+ * directions by GMRES on the last LU factors (the frictional tangent is unsymmetric), which
+ * must meet every check of the direct path and be taken at least once. */
+static int sliding(int on_block, int order, int krylov) {
   int fail = 0;
   FemMesh *mb[2] = {NULL, NULL}, *m = NULL;
   CuBox up = {{0, 0, 0}, {A, A, A}}, lo = {{0, -0.5 * A, -A}, {2 * A, 1.5 * A, 0}};
@@ -126,6 +128,10 @@ static int sliding(int on_block, int order) {
                          fem_material_from_e_nu(100 * E, NU_SLIDE, 1000)};
   FemSolverParams prm = fem_solver_params_default();
   prm.rtol = 1e-10;
+  if (krylov) {
+    prm.krylov_max = 30;
+    prm.krylov_rtol = 1e-2;
+  }
   FemSolver *s;
   TU_CHECK(fem_solver_create(m, mats, &prm, &s));
   TU_CHECK(fem_solver_fix_surface(s, "top", FEM_XYZ));
@@ -143,8 +149,9 @@ static int sliding(int on_block, int order) {
   TU_CHECK(fem_contact_attach(c, s));
   TU_CHECK(fem_solver_setup(s));
   const FemSurface *top = fem_mesh_find_surface(m, "top");
-  const char *tag = on_block ? (order == 2 ? "block on block tet10" : "block on block")
-                             : (order == 2 ? "block on plane tet10" : "block on plane");
+  const char *tag = krylov     ? "block on block, GMRES"
+                    : on_block ? (order == 2 ? "block on block tet10" : "block on block")
+                               : (order == 2 ? "block on plane tet10" : "block on plane");
   double press = 1e-4, push[2] = {5e-6, on_block ? 3e-3 : 1e-3};
   TU_CHECK(fem_solver_set_prescribed(s, top->nnodes, top->nodes, 2, -press));
   TU_CHECK(fem_solver_solve(s));
@@ -215,8 +222,13 @@ static int sliding(int on_block, int order) {
   FemSolverStats fs;
   fem_solver_stats(s, &fs);
   if (getenv("CONTACT_VERBOSE"))
-    fprintf(stderr, "%s: pattern rebuilds %d, LU %d, Cholesky %d\n", tag, fs.n_pattern_rebuilds,
-            fs.n_lu, fs.n_chol);
+    fprintf(stderr, "%s: pattern rebuilds %d, LU %d, Cholesky %d, GMRES %d (%d iterations, %d "
+            "abandoned)\n", tag, fs.n_pattern_rebuilds, fs.n_lu, fs.n_chol, fs.n_gmres,
+            fs.n_krylov_it, fs.n_krylov_fail);
+  if (krylov && (fs.n_gmres == 0 || fs.n_krylov == 0)) {
+    fprintf(stderr, "%s: no Newton direction from GMRES (the test should exercise it)\n", tag);
+    fail = 1;
+  }
   fem_solver_destroy(&s);
   fem_contact_destroy(&c);
   smesh_free(&m);
@@ -449,10 +461,11 @@ static int cylinder_augmented(void) {
 int main(void) {
   sa_log_set_level(getenv("CONTACT_VERBOSE") ? SA_LOG_INFO : SA_LOG_WARN);
   int fail = 0;
-  fail |= sliding(0, 1);
-  fail |= sliding(1, 1);
-  fail |= sliding(0, 2);
-  fail |= sliding(1, 2);
+  fail |= sliding(0, 1, 0);
+  fail |= sliding(1, 1, 0);
+  fail |= sliding(0, 2, 0);
+  fail |= sliding(1, 2, 0);
+  fail |= sliding(1, 1, 1);
   fail |= cylinder();
   fail |= cylinder_friction();
   fail |= too_deep();
