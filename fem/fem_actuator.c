@@ -89,10 +89,10 @@ static const SaParam solver_params[] = {
      "(at a later Newton iterate the step to it is halved first; the increment is cut if "
      "even K_int is indefinite)"},
     {"krylov_max", SA_PARAM_INT, P(krylov_max), "-", "0", 0, 1000, 0, NULL,
-     "PCG iterations on the current tangent, preconditioned by the last Cholesky factors, "
-     "before refactorising (0 = off)"},
+     "Krylov iterations on the current tangent, preconditioned by the last factors, before "
+     "refactorising (0 = off): PCG on Cholesky factors of a symmetric tangent, else GMRES"},
     {"krylov_rtol", SA_PARAM_REAL, P(krylov_rtol), "-", "1e-3", 1e-12, 0.5, 0, NULL,
-     "PCG stop: linear residual relative to the Newton residual"},
+     "Krylov stop: linear residual relative to the Newton residual"},
     {"ls_memory", SA_PARAM_INT, P(ls_memory), "-", "1", 1, 8, 0, NULL,
      "energy merit: Armijo test against the largest potential of this many last iterates "
      "(1 = monotone; more lets the full steps of a nearly incompressible solid pass)"},
