@@ -812,6 +812,17 @@ int fem_contact_augment(FemContact *c, double *max_penetration, double *overlap_
   return 0;
 }
 
+int fem_contact_augment_damp(FemContact *c, double omega) {
+  SA_REQUIRE(omega > 0.0 && omega <= 1.0, SA_ERR_INPUT, "contact '%s': damping %g outside (0, 1]",
+             c->slave, omega);
+  for (int k = 0; k < c->ns; k++) {
+    c->lam_t[k] = c->lam_c[k] + omega * (c->lam_t[k] - c->lam_c[k]);
+    for (int i = 0; i < 3; i++)
+      c->lamT_t[3 * k + i] = c->lamT_c[3 * k + i] + omega * (c->lamT_t[3 * k + i] - c->lamT_c[3 * k + i]);
+  }
+  return 0;
+}
+
 /* A pending multiplier update dropped: target and current = committed. */
 static void cancel_augment(FemContact *c) {
   size_t n = sizeof(double) * (size_t)c->ns;

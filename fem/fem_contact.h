@@ -113,6 +113,11 @@ typedef struct {
  * Multipliers start at 0 (pure penalty) and are not part of the solver's snapshot: call
  * between solves only. */
 int fem_contact_augment(FemContact *c, double *max_penetration, double *overlap_volume);
+/* Damp the pending update of fem_contact_augment: every target multiplier (normal and
+ * tangential) becomes committed + omega (target - committed), omega in (0, 1]. A shorter Uzawa
+ * step for a solve that failed with the whole one (the Uzawa iteration converges for any step
+ * up to the full one, only more slowly). */
+int fem_contact_augment_damp(FemContact *c, double omega);
 /* With friction the solves of an augmentation loop must not each commit a slip: slip is
  * irreversible, so a first solve with the penalty's penetration would leave the nodes where it
  * slid them and the answer would depend on the penalty. fem_contact_mark keeps the stick
