@@ -20,6 +20,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include <ini.h>
+
 #include "sa_csv.h"
 #include "sa_error.h"
 #include "sa_log.h"
@@ -75,6 +77,7 @@ typedef struct {
   double *p;      /* pressure run: cavity pressure [Pa]; NULL otherwise */
   double x_end;   /* pressure run: x of its largest volume change (before clipping) */
   int clipped;    /* pressure run: its last point is interpolated at the granular runs' end */
+  char mesh[256]; /* its silicone mesh from [mesh] of its case.ini ("" when not found) */
 } Curve;
 
 typedef struct {
@@ -212,6 +215,60 @@ static int is_dir(const char *path) {
   return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
 }
 
+/* The silicone mesh of a run: [mesh] order, h, h_band, h_ring, rings of the resolved case.ini
+ * softact wrote into its results folder. The curves of runs on different meshes belong to
+ * different actuators (a tet4 silicone locks: docs/compare.md, "The MC scene's silicone"). */
+enum { MK_ORDER, MK_H, MK_HBAND, MK_HRING, MK_RINGS, MK_N };
+static const char *const mesh_key[MK_N] = {"order", "h", "h_band", "h_ring", "rings"};
+typedef struct {
+  char v[MK_N][32];
+} MeshKeys;
+
+static int mesh_handler(void *user, const char *section, const char *key, const char *value) {
+  MeshKeys *m = user;
+  if (strcmp(section, "mesh")) return 1;
+  for (int i = 0; i < MK_N; i++)
+    if (!strcmp(key, mesh_key[i])) { /* value up to an inline comment, trimmed */
+      size_t n = strcspn(value, ";");
+      while (n > 0 && (value[n - 1] == ' ' || value[n - 1] == '\t')) n--;
+      snprintf(m->v[i], sizeof m->v[i], "%.*s", (int)n, value);
+    }
+  return 1;
+}
+
+static void read_mesh(Curve *c) {
+  char path[SA_STR_MAX];
+  c->mesh[0] = 0;
+  if (sa_path_join(c->dir, "case.ini", path)) {
+    sa_error_clear();
+    return;
+  }
+  MeshKeys m;
+  memset(&m, 0, sizeof m);
+  /* a line inih cannot read elsewhere in the file does not matter here; a missing file does */
+  if (ini_parse(path, mesh_handler, &m) < 0 || !m.v[MK_ORDER][0]) return;
+  snprintf(c->mesh, sizeof c->mesh, "%s, h %s m, h_band %s m, h_ring %s m, rings %s",
+           strcmp(m.v[MK_ORDER], "1") ? "tet10" : "tet4", m.v[MK_H], m.v[MK_HBAND],
+           m.v[MK_HRING], m.v[MK_RINGS]);
+}
+
+/* 1 when two loaded runs name different silicone meshes (description in *what). */
+static int meshes_differ(const SaCompareScene *s, char *what, size_t n) {
+  int differ = 0;
+  size_t len = 0;
+  what[0] = 0;
+  for (int k = 0; k < CMP_N; k++) {
+    const Curve *c = &s->c[k];
+    if (!c->loaded || !c->mesh[0]) continue;
+    for (int j = 0; j < k; j++)
+      if (s->c[j].loaded && s->c[j].mesh[0] && strcmp(s->c[j].mesh, c->mesh)) differ = 1;
+    if (len < n)
+      len += (size_t)snprintf(what + len, n - len, "%s%s: %s", len ? "; " : "", cmp_key[k],
+                              c->mesh);
+  }
+  return differ;
+}
+
 /* Resolve a folder key against the case file's folder; read its bending.csv if it exists. */
 static int load_input(const SaCase *cs, SaCompareScene *s, int k, char *value) {
   Curve *c = &s->c[k];
@@ -252,6 +309,7 @@ static int load_input(const SaCase *cs, SaCompareScene *s, int k, char *value) {
   sa_csv_data_destroy(&d);
   SA_CHECK(rc);
   c->loaded = 1;
+  read_mesh(c);
   return 0;
 }
 
@@ -531,6 +589,10 @@ static int write_summary(const SaCompareScene *s, const SaRun *run, const double
     fprintf(fp, "%s_to = %.9g ; m%s\n", cmp_key[k], xe,
             k == CMP_PRESSURE ? " (the run's largest cavity volume change / pi r^2)" : "");
   }
+  char meshes[4 * 256];
+  int differ = meshes_differ(s, meshes, sizeof meshes);
+  fprintf(fp, "meshes = %s ; %s\n", differ ? "differ" : "same",
+          meshes[0] ? meshes : "no case.ini in the inputs");
   fprintf(fp, "table_rows = %d\n", nrows);
   if (nrows)
     fprintf(fp, "table_from = %.9g ; m\ntable_to = %.9g ; m\n", rows[T_X],
@@ -569,6 +631,11 @@ static int compare_run(void *scene, SaRun *run) {
              "bending angle %.4g to %.4g deg", cmp_key[k], s->c[k].csv, s->c[k].n,
              1e3 * s->c[k].x[0], 1e3 * s->c[k].x[s->c[k].n - 1], s->c[k].angle[0],
              s->c[k].angle[s->c[k].n - 1]);
+  char meshes[4 * 256];
+  if (meshes_differ(s, meshes, sizeof meshes))
+    sa_log(SA_LOG_WARN, "compare", "the runs' silicone meshes differ (%s): their curves are those "
+           "of different actuators; a tet4 silicone locks (docs/compare.md). Compare runs on one "
+           "mesh", meshes);
   Curve *pc = &s->c[CMP_PRESSURE];
   if (pc->loaded) {
     if (pc->x_end < x_gran * (1 - 1e-12))

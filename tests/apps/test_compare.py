@@ -11,7 +11,11 @@ Synthetic runs (bore radius r = 6 mm, A = pi r^2):
 so the pressure baseline at displacement x is angle 2e7 A x, force 1e11 A^2 x, for
 x <= 3e-7 / A = 2.6526 mm, and the piecewise-linear granular curves give the values below.
 Differences are compared with |a - b| <= 1e-12 + 1e-12 |b| (the table holds 17 digits; the
-interpolation is a few flops)."""
+interpolation is a few flops).
+
+Runs on different silicone meshes (the [mesh] order / h / h_band / h_ring / rings of the case.ini
+softact writes into a results folder) are flagged: a warning and `meshes = differ` in summary.ini
+(tet4 and tet10 silicones are different actuators: tet4 locks, docs/compare.md)."""
 import math, os, subprocess, sys, tempfile
 
 exe = sys.argv[1]
@@ -144,6 +148,31 @@ with tempfile.TemporaryDirectory() as tmp:
         for f in ["curve_dem.csv", "curve_mc.csv", "curve_pressure.csv", "case.ini", "softact.log"]:
             if not os.path.exists(os.path.join(out, f)):
                 fails.append(f"good: {f} not written")
+
+    # --- runs on different silicone meshes are flagged (their [mesh] in case.ini) ---
+    def mesh_case(path, order, rings):
+        with open(os.path.join(path, "case.ini"), "w") as f:
+            f.write(f"[mesh]\ngeo = x.geo ; [-] source\nh = 0.004   ; [m] size\nh_band = 0.002\n"
+                    f"h_ring = 0.002\norder = {order}   ; [-] element order\nrings = {rings}\n")
+    for name, order, rings in (("dem_m", 2, 1), ("mc_m", 1, 0), ("mc_same", 2, 1)):
+        src = "dem" if name == "dem_m" else "mc"
+        granular(os.path.join(tmp, name), *( ([0, 1, 2, 3], [0.5, 1.0, 2.0, 2.5], [0, 10, 20, 30])
+                                             if src == "dem" else ([0, 1.5, 4], [0, 3, 5], [0, 15, 40])))
+        mesh_case(os.path.join(tmp, name), order, rings)
+    for name, mc, want in (("mesh_differ", "mc_m", "differ"), ("mesh_same", "mc_same", "same")):
+        r, out = run(tmp, name, f"dem = dem_m\nmc = {mc}\n")
+        if r.returncode != 0:
+            fails.append(f"{name}: exit {r.returncode}: {r.stderr[:600]}")
+            continue
+        summary = open(os.path.join(out, "summary.ini")).read()
+        if f"meshes = {want} ;" not in summary:
+            fails.append(f"{name}: summary.ini lacks 'meshes = {want}'")
+        warned = "silicone meshes differ" in r.stderr
+        if warned != (want == "differ"):
+            fails.append(f"{name}: warning about the meshes {'missing' if not warned else 'given'}: "
+                         f"{r.stderr[:400]}")
+        if want == "differ" and "mc: tet4, h 0.004 m, h_band 0.002 m, h_ring 0.002 m, rings 0" not in summary:
+            fails.append(f"{name}: the MC run's mesh is not described: {summary[:600]}")
 
     # --- two inputs suffice; the pressure curve is clipped at the DEM's end (3 mm) ---
     pressure(os.path.join(tmp, "pressure_long"), [0, 2e-7, 4e-7, 6e-7])
