@@ -92,6 +92,11 @@ typedef struct {
   double *sigma, *vm, *reg;
   int vtk_index;
   double t_dem, t_exchange, t_fem, t_out, t_checks;
+  /* the exchange's parts in this process (not checkpointed: since the run or its resume began):
+   * the wall placed with the piston at rest (every DEM step) and moving (every wall_every),
+   * the piston placed, the wall and piston forces read, and mapped to FEM loads */
+  double t_x_wall_rest, t_x_wall_moving, t_x_piston, t_x_forces, t_x_map; /* map: forces to
+                                                                           * FEM loads */
   /* the stroke's progress (kept in a checkpoint): next step (preload steps first), time,
    * piston contact height, the CSV rows and VTK times written so far */
   int next_step;
@@ -560,6 +565,7 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
    * end (one reduction instead of one per DEM step); one rank: read every step as before */
   int par = dem_par_size() > 1;
   long next_wall = 0; /* DEM step at which the wall is placed next */
+  int piston_placed = 0;
   for (int k = 0; k < N_MESH; k++) g->F_mesh[k][0] = g->F_mesh[k][1] = g->F_mesh[k][2] = 0;
   memset(g->f_sum, 0, sizeof(double) * 3 * (size_t)g->nt);
   for (int k = 0; k < 3 * g->nv; k++) g->vw[k] = (g->xw_cur[k] - g->xw_prev[k]) / T;
@@ -568,7 +574,7 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
     SA_REQUIRE(!sa_interrupted(), SA_ERR_INTERRUPTED, "interrupted inside a coupling step");
     int n = nsteps - done < chunk ? (int)(nsteps - done) : chunk;
     double te = (done + n) * g->dt, a = fmin(te / T, 1.0);
-    double t0 = sa_time_now();
+    double t0 = sa_time_now(), t0x = t0;
     /* positions at the end of the chunk (wall_every = 1) or at the middle of the next window
      * of wall_every steps; velocities constant over the step */
     if (done >= next_wall) {
@@ -578,6 +584,9 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
       if (!g->rigid) /* LIGGGHTS alone: the wall stays where it is */
         SA_CHECK(dem_bridge_set_mesh_nodes(g->b, g->mesh_id[M_WALL], g->xw, g->vw));
       next_wall = done + wall_every;
+      double t1 = sa_time_now();
+      *(v0 > 0 || v1 > 0 ? &g->t_x_wall_moving : &g->t_x_wall_rest) += t1 - t0;
+      t0 = t1;
     }
     if (sa_log_get_level() >= SA_LOG_DEBUG && done == 0) {
       double *chk = malloc(sizeof(double) * 3 * (size_t)g->nv), e = 0;
@@ -588,8 +597,14 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
     }
     double ds, vp;
     dem_piston_at(0, v0, v1, T, te, &ds, &vp);
-    SA_CHECK(set_piston(g, z0 - ds, -vp));
-    g->t_exchange += sa_time_now() - t0;
+    /* a piston at rest (the preload) is placed once per step, not every DEM step: nothing else
+     * moves it within the step, and placing it where it is changes nothing in LIGGGHTS */
+    if (!piston_placed || z0 - ds != g->z_piston || -vp != g->piston_v[2])
+      SA_CHECK(set_piston(g, z0 - ds, -vp));
+    piston_placed = 1;
+    double t1 = sa_time_now();
+    g->t_x_piston += t1 - t0;
+    g->t_exchange += t1 - t0x;
     t0 = sa_time_now();
     SA_CHECK(dem_bridge_run(g->b, n));
     g->t_dem += sa_time_now() - t0;
@@ -608,7 +623,9 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
       }
     }
     nsamp++;
-    g->t_exchange += sa_time_now() - t0;
+    double t2 = sa_time_now();
+    g->t_x_forces += t2 - t0;
+    g->t_exchange += t2 - t0;
     done += n;
   }
   if (par) { /* the sums over the step, from every rank */
@@ -619,12 +636,14 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
       for (int q = 0; q < g->mesh_nt[m]; q++)
         for (int d = 0; d < 3; d++) g->F_mesh[m][d] += f[3 * q + d];
     }
+    g->t_x_forces += sa_time_now() - t0;
     g->t_exchange += sa_time_now() - t0;
   }
   if (wall_every > 1 && !g->rigid) { /* the step ends with the wall where the FEM put it */
     double t0 = sa_time_now();
     memcpy(g->xw, g->xw_cur, sizeof(double) * 3 * (size_t)g->nv);
     SA_CHECK(dem_bridge_set_mesh_nodes(g->b, g->mesh_id[M_WALL], g->xw, g->vw));
+    g->t_x_wall_moving += sa_time_now() - t0;
     g->t_exchange += sa_time_now() - t0;
   }
   for (int k = 0; k < 3 * g->nt; k++) {
@@ -681,6 +700,7 @@ static int fem_step(Run *g, double T) {
   SA_CHECK(fem_solver_set_nodal_forces(g->s, g->nv, fem_coupling_surface_nodes(g->cs), g->f_app));
   if (g->sc->coupling.interface_stiffness > 0) interface_update(g);
   memcpy(g->xw_prev, g->xw_cur, sizeof(double) * 3 * (size_t)g->nv);
+  g->t_x_map += sa_time_now() - t0;
   g->t_exchange += sa_time_now() - t0;
   if (g->rigid) { /* LIGGGHTS alone: the wall keeps its shape, nothing is solved */
     g->newton = 0;
@@ -1447,6 +1467,11 @@ int dem_granular_run(const DemScene *sc, const SaRun *run) {
   }
   sa_timing_add("dem", g.t_dem);
   sa_timing_add("exchange", g.t_exchange);
+  sa_timing_add("  wall, piston at rest", g.t_x_wall_rest);
+  sa_timing_add("  wall, piston moving", g.t_x_wall_moving);
+  sa_timing_add("  piston", g.t_x_piston);
+  sa_timing_add("  forces", g.t_x_forces);
+  sa_timing_add("  forces to FEM loads", g.t_x_map);
   sa_timing_add("fem (coupling)", g.t_fem);
   if (g.iqn) sa_timing_add("rollback", g.t_rollback);
   sa_timing_add("run checks", g.t_checks);
