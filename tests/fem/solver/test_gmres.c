@@ -23,6 +23,7 @@
 
 #include "fem_gmres.h"
 #include "fem_linsolve.h"
+#include "grid_matrix.h"
 #include "sa_error.h"
 
 #define M 12
@@ -31,24 +32,7 @@
 static int colptr[N + 1], rowind[5 * N];
 
 static void build(double diag, double conv, double *val) {
-  int k = 0;
-  for (int j = 0; j < N; j++) {
-    int jx = j % M, jy = j / M;
-    colptr[j] = k;
-    int rows[5], nr = 0;
-    if (jy > 0) rows[nr++] = j - M;
-    if (jx > 0) rows[nr++] = j - 1;
-    rows[nr++] = j;
-    if (jx < M - 1) rows[nr++] = j + 1;
-    if (jy < M - 1) rows[nr++] = j + M;
-    for (int r = 0; r < nr; r++) {
-      int i = rows[r];
-      rowind[k] = i;
-      val[k] = i == j ? diag : -1.0 + (i == j - 1 ? conv : (i == j + 1 ? -conv : 0.0));
-      k++;
-    }
-  }
-  colptr[N] = k;
+  grid_matrix(M, diag, conv, colptr, rowind, val);
 }
 
 static void matvec(const double *val, const double *x, double *y) {

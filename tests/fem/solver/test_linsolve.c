@@ -13,6 +13,7 @@
 #include <stdlib.h>
 
 #include "fem_linsolve.h"
+#include "grid_matrix.h"
 #include "sa_error.h"
 
 #define M 12
@@ -22,26 +23,7 @@ static int colptr[N + 1], rowind[5 * N];
 static double val[5 * N];
 
 static void build(double shift, double conv) {
-  int k = 0;
-  for (int j = 0; j < N; j++) { /* column j */
-    int jx = j % M, jy = j / M;
-    colptr[j] = k;
-    /* rows in increasing order: j-M, j-1, j, j+1, j+M */
-    int rows[5], nr = 0;
-    if (jy > 0) rows[nr++] = j - M;
-    if (jx > 0) rows[nr++] = j - 1;
-    rows[nr++] = j;
-    if (jx < M - 1) rows[nr++] = j + 1;
-    if (jy < M - 1) rows[nr++] = j + M;
-    for (int r = 0; r < nr; r++) {
-      int i = rows[r];
-      rowind[k] = i;
-      if (i == j) val[k] = 4.0 - shift;
-      else val[k] = -1.0 + (i == j - 1 ? conv : (i == j + 1 ? -conv : 0.0));
-      k++;
-    }
-  }
-  colptr[N] = k;
+  grid_matrix(M, 4.0 - shift, conv, colptr, rowind, val);
 }
 
 static void matvec(const double *x, double *y) {
