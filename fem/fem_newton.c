@@ -419,7 +419,7 @@ static int direction(FemSolver *s, const StepKind *sk, Iter *t, int plan_reuse, 
     for (int k = 0; k < nf; k++) s->nw.rhs[k] = -s->nw.R[k];
     int its = 0, prc;
     double t0 = sa_time_now();
-    if (tangent_symmetric(s) && s->nw.last_sym) {
+    if (s->nw.last_sym && tangent_symmetric(s)) { /* the O(nnz) scan only with Cholesky factors */
       prc = pcg(s, s->nw.rhs, s->nw.da, s->prm.krylov_max, s->prm.krylov_rtol, &its);
     } else {
       prc = fem_gmres_solve(&s->nw.gm, s->dm.colptr, s->dm.rowind, s->as.val, s->nw.rhs,
