@@ -93,6 +93,18 @@ int dem_bridge_finalize_walls(DemBridge *b);
  * moved more than half the skin since the last neighbour build. A vertex outside the box is
  * refused with SA_ERR_DOMAIN (LIGGGHTS would abort on a lost wall element). */
 int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const double *v);
+/* A mesh moved every DEM step, cheaply. dem_bridge_set_mesh_path sends a straight path once:
+ * from x0 to x1 [in] 3*nverts, node velocities v [in] 3*nverts (NULL: zero), both ends checked
+ * as dem_bridge_set_mesh_nodes checks (the box is convex); dem_bridge_place_on_path then puts
+ * every node at x0 + a (x1 - x0), 0 <= a <= 1, sending only a. dem_bridge_place_flat_mesh moves
+ * a flat mesh (every vertex at one height, refused otherwise) to height z [m] with velocity
+ * (0, 0, vz) and recomputes no normal. Both give LIGGGHTS the bits dem_bridge_set_mesh_nodes
+ * gives it for those nodes, but skip the mesh's global bounding box and total area (reductions
+ * over the ranks that only insertion faces read). */
+int dem_bridge_set_mesh_path(DemBridge *b, int id, const double *x0, const double *x1,
+                             const double *v);
+int dem_bridge_place_on_path(DemBridge *b, int id, double a);
+int dem_bridge_place_flat_mesh(DemBridge *b, int id, double z, double vz);
 /* Force the grains exert on each triangle of mesh id, f [out] 3*ntri [N], at the last step. */
 int dem_bridge_mesh_forces(DemBridge *b, int id, double *f);
 int dem_bridge_mesh_ntri(DemBridge *b, int id);

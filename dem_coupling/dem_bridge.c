@@ -48,6 +48,9 @@ typedef struct {
   double *v;   /* node velocities last set (caller order), for checkpoints [owned] */
   double *acc; /* running sum of this rank's triangle forces (dem_bridge_mesh_forces_add),
                 * 3*ntri [owned, allocated on first use] */
+  double *path; /* dem_bridge_set_mesh_path's ends: start, then end, 2*3*nverts [owned,
+                 * allocated on first use]; path_set: they are valid */
+  int path_set;
   void *shim;  /* the fix mesh/surface [borrowed from LIGGGHTS] */
 } DemMesh;
 
@@ -367,6 +370,7 @@ static void destroy_here(DemBridge **pb) {
     free(b->mesh[i].idx);
     free(b->mesh[i].v);
     free(b->mesh[i].acc);
+    free(b->mesh[i].path);
   }
   free(b->mesh);
   ck_free(&b->ck);
@@ -816,10 +820,26 @@ int dem_bridge_mesh_ntri(DemBridge *b, int id) {
   return b && id >= 0 && id < b->nmesh ? b->mesh[id].ntri : 0;
 }
 
+static int check_nodes(const DemBridge *b, const DemMesh *m, const double *xyz,
+                       const double *v);
+
 static int set_mesh_nodes_here(DemBridge *b, int id, const double *xyz, const double *v) {
   DemMesh *m = NULL;
   SA_CHECK(mesh_get(b, id, &m));
   SA_REQUIRE(xyz, SA_ERR_INPUT, "mesh '%s': no node positions", m->fix_id + 5);
+  SA_CHECK(check_nodes(b, m, xyz, v));
+  m->path_set = 0;
+  memcpy(m->xyz, xyz, 3 * (size_t)m->nverts * sizeof *xyz);
+  if (v)
+    memcpy(m->v, v, 3 * (size_t)m->nverts * sizeof *v);
+  else
+    memset(m->v, 0, 3 * (size_t)m->nverts * sizeof *m->v);
+  dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, v, b->ran);
+  return 0;
+}
+
+static int check_nodes(const DemBridge *b, const DemMesh *m, const double *xyz,
+                       const double *v) {
   for (int i = 0; i < m->nverts; i++) {
     SA_REQUIRE(finite3(xyz + 3 * i) && (!v || finite3(v + 3 * i)), SA_ERR_NAN,
                "mesh '%s': node %d position or velocity is not finite", m->fix_id + 5, i);
@@ -827,12 +847,64 @@ static int set_mesh_nodes_here(DemBridge *b, int id, const double *xyz, const do
                "mesh '%s': node %d (%g, %g, %g) left the DEM box", m->fix_id + 5, i, xyz[3 * i],
                xyz[3 * i + 1], xyz[3 * i + 2]);
   }
-  memcpy(m->xyz, xyz, 3 * (size_t)m->nverts * sizeof *xyz);
+  return 0;
+}
+
+static int set_mesh_path_here(DemBridge *b, int id, const double *x0, const double *x1,
+                              const double *v) {
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  SA_REQUIRE(x0 && x1, SA_ERR_INPUT, "mesh '%s': no path ends", m->fix_id + 5);
+  m->path_set = 0;
+  /* the box is convex: both ends inside, every point between is */
+  SA_CHECK(check_nodes(b, m, x0, v));
+  SA_CHECK(check_nodes(b, m, x1, NULL));
+  size_t n = 3 * (size_t)m->nverts;
+  if (!m->path) SA_CALLOC(m->path, 2 * n);
+  memcpy(m->path, x0, n * sizeof *x0);
+  memcpy(m->path + n, x1, n * sizeof *x1);
   if (v)
-    memcpy(m->v, v, 3 * (size_t)m->nverts * sizeof *v);
+    memcpy(m->v, v, n * sizeof *v);
   else
-    memset(m->v, 0, 3 * (size_t)m->nverts * sizeof *m->v);
-  dem_shim_mesh_set_nodes(b->lmp, m->shim, m->idx, m->xyz, v, b->ran);
+    memset(m->v, 0, n * sizeof *m->v);
+  m->path_set = 1;
+  return 0;
+}
+
+static int place_on_path_here(DemBridge *b, int id, double a) {
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  SA_REQUIRE(m->path_set, SA_ERR_INPUT, "mesh '%s': placed on a path before one was set",
+             m->fix_id + 5);
+  SA_REQUIRE(a >= 0 && a <= 1, SA_ERR_INPUT, "mesh '%s': path fraction %g outside [0, 1]",
+             m->fix_id + 5, a);
+  size_t n = 3 * (size_t)m->nverts;
+  const double *x0 = m->path, *x1 = m->path + n;
+  for (size_t k = 0; k < n; k++) m->xyz[k] = x0[k] + a * (x1[k] - x0[k]);
+  dem_shim_mesh_place(b->lmp, m->shim, m->idx, m->xyz, m->v, b->ran);
+  return 0;
+}
+
+static int place_flat_mesh_here(DemBridge *b, int id, double z, double vz) {
+  DemMesh *m = NULL;
+  SA_CHECK(mesh_get(b, id, &m));
+  SA_REQUIRE(isfinite(z) && isfinite(vz), SA_ERR_NAN, "mesh '%s': height %g or speed %g is "
+             "not finite", m->fix_id + 5, z, vz);
+  for (int i = 0; i < m->nverts; i++) {
+    double *x = m->xyz + 3 * i;
+    SA_REQUIRE(x[2] == m->xyz[2], SA_ERR_INPUT, "mesh '%s' is not flat (node %d at z = %g, "
+               "node 0 at %g): it cannot be moved as a flat mesh", m->fix_id + 5, i, x[2],
+               m->xyz[2]);
+    double p[3] = {x[0], x[1], z};
+    SA_REQUIRE(inside_box(&b->p, p), SA_ERR_DOMAIN, "mesh '%s': node %d (%g, %g, %g) left "
+               "the DEM box", m->fix_id + 5, i, p[0], p[1], p[2]);
+  }
+  for (int i = 0; i < m->nverts; i++) {
+    m->xyz[3 * i + 2] = z;
+    m->v[3 * i] = m->v[3 * i + 1] = 0, m->v[3 * i + 2] = vz;
+  }
+  m->path_set = 0;
+  dem_shim_mesh_place_flat(b->lmp, m->shim, z, vz, b->ran);
   return 0;
 }
 
@@ -1912,7 +1984,8 @@ enum {
   OP_CREATE = 1, OP_DESTROY, OP_LOG_APPEND, OP_COMMAND, OP_SETUP, OP_SETUP_CK, OP_PROCESSORS,
   OP_ADD_MESH, OP_FINALIZE, OP_SET_NODES, OP_FORCES, OP_NODES, OP_COUNT, OP_INSERT, OP_RUN,
   OP_SET_YOUNG, OP_SCALE_FRICTION, OP_SET_SKIN, OP_PARTICLES, OP_CONTACTS, OP_IDS, OP_KE,
-  OP_OVERLAP, OP_WRITE_RESTART, OP_WRITE_CK, OP_FORCES_ADD, OP_FORCES_TAKE
+  OP_OVERLAP, OP_WRITE_RESTART, OP_WRITE_CK, OP_FORCES_ADD, OP_FORCES_TAKE, OP_SET_PATH,
+  OP_PLACE_PATH, OP_PLACE_FLAT
 };
 
 /* A bridge whose calls the lead broadcasts (rank 0 of several). */
@@ -2050,6 +2123,28 @@ int dem_bridge_set_mesh_nodes(DemBridge *b, int id, const double *xyz, const dou
     lead_call(OP_SET_NODES, 1, &id, 0, NULL, xyz, n, v, n, NULL, 0);
   }
   return set_mesh_nodes_here(b, id, xyz, v);
+}
+
+int dem_bridge_set_mesh_path(DemBridge *b, int id, const double *x0, const double *x1,
+                             const double *v) {
+  if (leads(b)) {
+    size_t n = id >= 0 && id < b->nmesh ? 3 * (size_t)b->mesh[id].nverts * sizeof(double) : 0;
+    lead_call(OP_SET_PATH, 1, &id, 0, NULL, x0, n, x1, n, v, n);
+  }
+  return set_mesh_path_here(b, id, x0, x1, v);
+}
+
+int dem_bridge_place_on_path(DemBridge *b, int id, double a) {
+  if (leads(b)) lead_call(OP_PLACE_PATH, 1, &id, 1, &a, NULL, 0, NULL, 0, NULL, 0);
+  return place_on_path_here(b, id, a);
+}
+
+int dem_bridge_place_flat_mesh(DemBridge *b, int id, double z, double vz) {
+  if (leads(b)) {
+    double d[2] = {z, vz};
+    lead_call(OP_PLACE_FLAT, 1, &id, 2, d, NULL, 0, NULL, 0, NULL, 0);
+  }
+  return place_flat_mesh_here(b, id, z, vz);
 }
 
 int dem_bridge_mesh_forces(DemBridge *b, int id, double *f) {
@@ -2317,6 +2412,9 @@ int dem_bridge_follow(void) {
     case OP_WRITE_CK: rc = dem_bridge_write_checkpoint(b, p[0]); break;
     case OP_FORCES_ADD: rc = dem_bridge_mesh_forces_add(b); break;
     case OP_FORCES_TAKE: rc = dem_bridge_mesh_forces_take(b, c.i[0], NULL); break;
+    case OP_SET_PATH: rc = dem_bridge_set_mesh_path(b, c.i[0], p[0], p[1], p[2]); break;
+    case OP_PLACE_PATH: rc = dem_bridge_place_on_path(b, c.i[0], c.d[0]); break;
+    case OP_PLACE_FLAT: rc = dem_bridge_place_flat_mesh(b, c.i[0], c.d[0], c.d[1]); break;
     default: rc = SA_ERROR(SA_ERR_INTERNAL, "unknown DEM call %d from the lead", c.op);
     }
     for (int j = 0; j < DEM_PAR_NBUF; j++) free(p[j]);

@@ -26,6 +26,9 @@
 #include <fix_contact_history_mesh.h>
 #include <atom.h>
 #include <tri_mesh.h>
+#include <vector_liggghts.h>
+
+#include <algorithm>
 
 using namespace LAMMPS_NS;
 
@@ -45,9 +48,70 @@ struct SurfaceAccess : TriMesh {
     MultiVectorContainer<double, 3, 3> MultiNodeMesh<3>::*node = &SurfaceAccess::node_;
     return (m->*node).begin();
   }
+  /* MultiNodeMesh::updateCenterRbound for elements [0, n), without its last call,
+   * updateGlobalBoundingBox (two reductions over the ranks): the global box is read only by
+   * insertion faces (fix insert/stream), never by a wall contact. The same arithmetic, so the
+   * same bits. */
+  static void centres(TriMesh *m, int n) {
+    VectorContainer<double, 3> MultiNodeMesh<3>::*cp = &SurfaceAccess::center_;
+    ScalarContainer<double> MultiNodeMesh<3>::*rp = &SurfaceAccess::rBound_;
+    double ***node = nodes(m);
+    for (int i = 0; i < n; i++) {
+      double *c = (m->*cp)(i);
+      vectorZeroize3D(c);
+      for (int j = 0; j < 3; j++) vectorAdd3D(node[i][j], c, c);
+      vectorScalarDiv3D(c, 3.0);
+      double rb = 0., vec[3];
+      for (int j = 0; j < 3; j++) {
+        vectorSubtract3D(c, node[i][j], vec);
+        rb = std::max(rb, vectorMag3D(vec));
+      }
+      (m->*rp)(i) = rb;
+    }
+  }
+  /* SurfaceMesh::recalcLocalSurfProperties and recalcGhostSurfProperties element by element,
+   * without the mesh's total area (a sum over the ranks, read only by insertion faces). */
+  static void surfaces(TriMesh *m, int n) {
+    typedef SurfaceMeshBase S;
+    void (S::*vec_len)(int, double *, double **) = &SurfaceAccess::calcEdgeVecLen;
+    void (S::*norm)(int, double *) = &SurfaceAccess::calcSurfaceNorm;
+    void (S::*edge_norms)(int, double **) = &SurfaceAccess::calcEdgeNormals;
+    void (S::*obtuse)(int, int, double &) = &SurfaceAccess::calcObtuseAngleIndex;
+    double (TriMesh::*calc_area)(int) = &SurfaceAccess::calcArea;
+    double *(S::*len)(int) = &SurfaceAccess::edgeLen;
+    double **(S::*vec)(int) = &SurfaceAccess::edgeVec;
+    double *(S::*snorm)(int) = &SurfaceAccess::surfaceNorm;
+    double **(S::*enorm)(int) = &SurfaceAccess::edgeNorm;
+    double &(S::*area)(int) = &SurfaceAccess::area;
+    double &(S::*area_acc)(int) = &SurfaceAccess::areaAcc;
+    for (int i = 0; i < n; i++) {
+      (m->*vec_len)(i, (m->*len)(i), (m->*vec)(i));
+      (m->*norm)(i, (m->*snorm)(i));
+      (m->*edge_norms)(i, (m->*enorm)(i));
+      for (int j = 0; j < 3; j++) {
+        double dot;
+        (m->*obtuse)(i, j, dot);
+      }
+      (m->*area)(i) = (m->*calc_area)(i);
+      (m->*area_acc)(i) = (m->*area)(i);
+      if (i > 0) (m->*area_acc)(i) += (m->*area_acc)(i - 1);
+    }
+  }
 };
 
 FixMeshSurface *as_fix(void *p) { return static_cast<FixMeshSurface *>(p); }
+
+/* The end of a node update: a neighbour rebuild at the next step when a node moved more than
+ * half the skin since the last one (MultiNodeMesh::decideRebuild: one reduction over the
+ * ranks, so that every rank decides alike). */
+int request_rebuild(void *lmp, FixMeshSurface *fm, int after_setup) {
+  /* before the first set-up LIGGGHTS has no neighbour-build positions (and builds anyway) */
+  if (after_setup && fm->triMesh()->decideRebuild()) {
+    *fm->get_next_reneighbor_ptr() = static_cast<LAMMPS *>(lmp)->update->ntimestep + 1;
+    return 1;
+  }
+  return 0;
+}
 
 }  // namespace
 
@@ -111,12 +175,54 @@ int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double 
   }
   m->updateCenterRbound(0, nall);
   SurfaceAccess::recalc(m);
-  /* before the first set-up LIGGGHTS has no neighbour-build positions (and builds anyway) */
-  if (after_setup && m->decideRebuild()) {
-    *fm->get_next_reneighbor_ptr() = static_cast<LAMMPS *>(lmp)->update->ntimestep + 1;
-    return 1;
+  return request_rebuild(lmp, fm, after_setup);
+}
+
+int dem_shim_mesh_place(void *lmp, void *mesh, const int *idx, const double *xyz,
+                        const double *v, int after_setup) {
+  FixMeshSurface *fm = as_fix(mesh);
+  TriMesh *m = fm->triMesh();
+  const int nall = m->sizeLocal() + m->sizeGhost();
+  double ***node = SurfaceAccess::nodes(m);
+  typedef MultiVectorContainer<double, 3, 3> NodeVec;
+  NodeVec *vc = m->prop().getElementProperty<NodeVec>("v");
+  double ***vn = vc && vc->size() >= nall ? vc->begin() : 0;
+  for (int i = 0; i < nall; i++) {
+    const int *k = idx + 3 * m->id(i);
+    for (int c = 0; c < 3; c++) {
+      const double *p = xyz + 3 * k[c];
+      node[i][c][0] = p[0];
+      node[i][c][1] = p[1];
+      node[i][c][2] = p[2];
+      if (!vn) continue;
+      const double *q = v + 3 * k[c];
+      vn[i][c][0] = q[0];
+      vn[i][c][1] = q[1];
+      vn[i][c][2] = q[2];
+    }
   }
-  return 0;
+  SurfaceAccess::centres(m, nall);
+  SurfaceAccess::surfaces(m, nall);
+  return request_rebuild(lmp, fm, after_setup);
+}
+
+int dem_shim_mesh_place_flat(void *lmp, void *mesh, double z, double vz, int after_setup) {
+  FixMeshSurface *fm = as_fix(mesh);
+  TriMesh *m = fm->triMesh();
+  const int nall = m->sizeLocal() + m->sizeGhost();
+  double ***node = SurfaceAccess::nodes(m);
+  typedef MultiVectorContainer<double, 3, 3> NodeVec;
+  NodeVec *vc = m->prop().getElementProperty<NodeVec>("v");
+  double ***vn = vc && vc->size() >= nall ? vc->begin() : 0;
+  for (int i = 0; i < nall; i++)
+    for (int c = 0; c < 3; c++) {
+      node[i][c][2] = z;
+      if (vn) vn[i][c][0] = vn[i][c][1] = 0., vn[i][c][2] = vz;
+    }
+  /* every edge vector keeps its z component 0 exactly, so edges, normals and areas are the
+   * ones a recomputation would give, bit for bit (test dem_bridge_place) */
+  SurfaceAccess::centres(m, nall);
+  return request_rebuild(lmp, fm, after_setup);
 }
 
 int dem_shim_mesh_forces(void *mesh, double *f) {

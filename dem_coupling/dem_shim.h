@@ -35,6 +35,16 @@ int dem_shim_mesh_make_moving(void *mesh);
  * 0 if not. */
 int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double *xyz,
                             const double *v, int after_setup);
+/* dem_shim_mesh_set_nodes (v required) without the two quantities that are summed over the
+ * ranks and read only by insertion faces, never by a wall contact: the mesh's global bounding
+ * box and total area. Every other quantity gets the same bits; the one reduction left is the
+ * rebuild decision. For a mesh moved every DEM step. */
+int dem_shim_mesh_place(void *lmp, void *mesh, const int *idx, const double *xyz,
+                        const double *v, int after_setup);
+/* A flat mesh (every node at one height) moved to height z [m] with node velocity (0, 0, vz):
+ * only the node heights, velocities, centres and bounding radii change (edges, normals and
+ * areas of a flat mesh do not); no global box or area, as dem_shim_mesh_place. */
+int dem_shim_mesh_place_flat(void *lmp, void *mesh, double z, double vz, int after_setup);
 /* Force of the last step on each triangle, f [out] at 3*id [N]; -1 if the mesh tracks no
  * stress. */
 int dem_shim_mesh_forces(void *mesh, double *f);

@@ -12,7 +12,12 @@
  * the damping (e' = 0.5) the result would be off by ~ 30 %.
  * Also: LIGGGHTS' node copies equal what was set (exactly), a coarser update (every 10 steps,
  * positions jump) still pushes the sphere along n, and the mesh forces balance the sphere's
- * momentum change (impulse = m dv to 2 %, force sampled every step). */
+ * momentum change (impulse = m dv to 2 %, force sampled every step).
+ * The cheap placements (dem_bridge_set_mesh_path + dem_bridge_place_on_path, and
+ * dem_bridge_place_flat_mesh for a flat wall) must give LIGGGHTS the same bits as
+ * dem_bridge_set_mesh_nodes with the same positions: the same push done both ways ends with the
+ * sphere's position and velocity identical to the last bit (and passes the physics check), and
+ * a tilted wall is refused as a flat one. */
 #include "dem_test_util.h"
 
 static const double TILT = 20 * M_PI / 180, W = 0.2, E_REST = 0.5;
@@ -81,6 +86,76 @@ static void push(int every, double *vel, double *impulse, int check_nodes) {
   dem_bridge_destroy(&b);
 }
 
+/* The tilted push with the wall on one straight path from s0 to s0 - W T: placed at fraction
+ * a = step / nsteps every step, either by dem_bridge_place_on_path (cheap = 1) or by
+ * dem_bridge_set_mesh_nodes at x0 + a (x1 - x0) computed here. Sphere position x, velocity v. */
+static void push_path(int cheap, double *x, double *vel) {
+  DemParams p;
+  params(&p);
+  const double R = 0.5 * p.diameter, c[3] = {0, 0, 0.02}, s0 = R + 3e-3, h = 8e-3;
+  double n[3] = {0, -sin(TILT), cos(TILT)};
+  DemBridge *b = NULL;
+  T_CHECK(dem_bridge_create(t_log(), &b));
+  T_CHECK(dem_bridge_setup(b, &p));
+  double xyz[12], x0[12], x1[12], vn[12];
+  int tri[6], id, ins;
+  t_square(0, 0, 0, h, xyz, tri);
+  T_CHECK(dem_bridge_add_mesh(b, "pusher", 4, xyz, 2, tri, DEM_WALL_STEEL, &id));
+  T_CHECK(dem_bridge_insert_cylinder(b, c[0], c[1], R, c[2] - R, c[2] + R, 1, &ins));
+  for (int i = 0; i < 4; i++)
+    for (int k = 0; k < 3; k++) vn[3 * i + k] = W * n[k];
+  int nsteps = (int)((s0 - R + 2e-3) / W / p.dt) + 300;
+  tilted(c, s0, h, x0);
+  tilted(c, s0 - W * nsteps * p.dt, h, x1);
+  if (cheap) T_CHECK(dem_bridge_set_mesh_path(b, id, x0, x1, vn));
+  for (int step = 0; step < nsteps; step++) {
+    double a = (double)step / nsteps;
+    if (cheap) {
+      T_CHECK(dem_bridge_place_on_path(b, id, a));
+    } else {
+      for (int k = 0; k < 12; k++) xyz[k] = x0[k] + a * (x1[k] - x0[k]);
+      T_CHECK(dem_bridge_set_mesh_nodes(b, id, xyz, vn));
+    }
+    T_CHECK(dem_bridge_run(b, 1));
+  }
+  T_CHECK(dem_bridge_particles(b, x, vel, NULL, NULL));
+  dem_bridge_destroy(&b);
+}
+
+/* A horizontal plate below the sphere lifted at speed W, placed every step by
+ * dem_bridge_place_flat_mesh (cheap = 1) or dem_bridge_set_mesh_nodes. */
+static void lift(int cheap, double *x, double *vel) {
+  DemParams p;
+  params(&p);
+  const double R = 0.5 * p.diameter, c[3] = {0, 0, 0.02}, z0 = c[2] - R - 2e-3, h = 8e-3;
+  DemBridge *b = NULL;
+  T_CHECK(dem_bridge_create(t_log(), &b));
+  T_CHECK(dem_bridge_setup(b, &p));
+  double xyz[12], v[12] = {0};
+  int tri[6], id, ins;
+  t_square(0, 0, z0, h, xyz, tri);
+  T_CHECK(dem_bridge_add_mesh(b, "lifter", 4, xyz, 2, tri, DEM_WALL_STEEL, &id));
+  T_CHECK(dem_bridge_insert_cylinder(b, c[0], c[1], R, c[2] - R, c[2] + R, 1, &ins));
+  for (int i = 0; i < 4; i++) v[3 * i + 2] = W;
+  int nsteps = (int)(4e-3 / W / p.dt) + 300;
+  for (int step = 0; step < nsteps; step++) {
+    double z = z0 + W * step * p.dt;
+    if (cheap) {
+      T_CHECK(dem_bridge_place_flat_mesh(b, id, z, W));
+    } else {
+      for (int i = 0; i < 4; i++) xyz[3 * i + 2] = z;
+      T_CHECK(dem_bridge_set_mesh_nodes(b, id, xyz, v));
+    }
+    T_CHECK(dem_bridge_run(b, 1));
+  }
+  T_CHECK(dem_bridge_particles(b, x, vel, NULL, NULL));
+  dem_bridge_destroy(&b);
+}
+
+static int same_bits(const double *a, const double *b, int n) {
+  return memcmp(a, b, (size_t)n * sizeof *a) == 0;
+}
+
 /* Reference: the sphere strikes the same wall at rest with speed W along -n. */
 static double rebound(void) {
   DemParams p;
@@ -132,5 +207,41 @@ int main(void) {
   t_true("coarse updates (every 10 steps): the sphere leaves along n faster than the wall",
          vn > W && vn < 2.5 * W && vt < 1e-3 * vn);
   if (t_verbose()) printf("moving mesh, every 10 steps: v_n %.6g, v_t %.3g\n", vn, vt);
+
+  /* the cheap placements: the same bits as node-by-node updates, and the same physics */
+  double xa[3], va[3], xb[3], vb[3];
+  push_path(0, xa, va);
+  push_path(1, xb, vb);
+  t_true("wall on a path (dem_bridge_place_on_path): sphere position and velocity identical "
+         "to dem_bridge_set_mesh_nodes at the same positions",
+         same_bits(xa, xb, 3) && same_bits(va, vb, 3));
+  vn = vb[0] * n[0] + vb[1] * n[1] + vb[2] * n[2];
+  t_close("path-placed wall: sphere speed along n ((1 + e') w, 1 %)", vn, (1 + e) * W, 0, 0.01);
+  lift(0, xa, va);
+  lift(1, xb, vb);
+  t_true("flat wall (dem_bridge_place_flat_mesh): sphere position and velocity identical to "
+         "dem_bridge_set_mesh_nodes at the same height",
+         same_bits(xa, xb, 3) && same_bits(va, vb, 3));
+  t_close("lifted sphere speed ((1 + e') w, 1 %)", vb[2], (1 + e) * W, 0, 0.01);
+  if (t_verbose())
+    printf("cheap placements: path v_n %.9g, flat v_z %.9g (ref %.9g)\n", vn, vb[2],
+           (1 + e) * W);
+  {
+    DemBridge *b = NULL;
+    double xyz[12];
+    int tri[6], id;
+    T_CHECK(dem_bridge_create(t_log(), &b));
+    T_CHECK(dem_bridge_setup(b, &p));
+    tilted((double[]){0, 0, 0.02}, 5e-3, 8e-3, xyz);
+    t_square(0, 0, 0, 8e-3, (double[12]){0}, tri);
+    T_CHECK(dem_bridge_add_mesh(b, "tilted", 4, xyz, 2, tri, DEM_WALL_STEEL, &id));
+    t_true("a tilted wall is refused as a flat one (SA_ERR_INPUT)",
+           dem_bridge_place_flat_mesh(b, id, 0.01, 0) == SA_ERR_INPUT);
+    t_true("a path fraction outside [0, 1] is refused", 
+           dem_bridge_set_mesh_path(b, id, xyz, xyz, NULL) == 0 &&
+               dem_bridge_place_on_path(b, id, 1.5) == SA_ERR_INPUT);
+    sa_error_clear();
+    dem_bridge_destroy(&b);
+  }
   return t_failures ? 1 : 0;
 }
