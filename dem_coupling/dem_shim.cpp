@@ -113,6 +113,34 @@ int request_rebuild(void *lmp, FixMeshSurface *fm, int after_setup) {
   return 0;
 }
 
+/* Every node copy (owned and ghost) of mesh m to xyz[3*idx[3*id+c]], its velocity to v[...]
+ * (v NULL: zero). */
+void copy_nodes(TriMesh *m, const int *idx, const double *xyz, const double *v) {
+  const int nall = m->sizeLocal() + m->sizeGhost();
+  double ***node = SurfaceAccess::nodes(m);
+  typedef MultiVectorContainer<double, 3, 3> NodeVec;
+  NodeVec *vc = m->prop().getElementProperty<NodeVec>("v");
+  double ***vn = vc && vc->size() >= nall ? vc->begin() : 0;
+  for (int i = 0; i < nall; i++) {
+    const int *k = idx + 3 * m->id(i);
+    for (int c = 0; c < 3; c++) {
+      const double *p = xyz + 3 * k[c];
+      node[i][c][0] = p[0];
+      node[i][c][1] = p[1];
+      node[i][c][2] = p[2];
+      if (!vn) continue;
+      if (v) {
+        const double *q = v + 3 * k[c];
+        vn[i][c][0] = q[0];
+        vn[i][c][1] = q[1];
+        vn[i][c][2] = q[2];
+      } else {
+        vn[i][c][0] = vn[i][c][1] = vn[i][c][2] = 0.;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 extern "C" {
@@ -150,30 +178,8 @@ int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double 
                             const double *v, int after_setup) {
   FixMeshSurface *fm = as_fix(mesh);
   TriMesh *m = fm->triMesh();
-  const int nall = m->sizeLocal() + m->sizeGhost();
-  double ***node = SurfaceAccess::nodes(m);
-  typedef MultiVectorContainer<double, 3, 3> NodeVec;
-  NodeVec *vc = m->prop().getElementProperty<NodeVec>("v");
-  double ***vn = vc && vc->size() >= nall ? vc->begin() : 0;
-  for (int i = 0; i < nall; i++) {
-    const int *k = idx + 3 * m->id(i);
-    for (int c = 0; c < 3; c++) {
-      const double *p = xyz + 3 * k[c];
-      node[i][c][0] = p[0];
-      node[i][c][1] = p[1];
-      node[i][c][2] = p[2];
-      if (!vn) continue;
-      if (v) {
-        const double *q = v + 3 * k[c];
-        vn[i][c][0] = q[0];
-        vn[i][c][1] = q[1];
-        vn[i][c][2] = q[2];
-      } else {
-        vn[i][c][0] = vn[i][c][1] = vn[i][c][2] = 0.;
-      }
-    }
-  }
-  m->updateCenterRbound(0, nall);
+  copy_nodes(m, idx, xyz, v);
+  m->updateCenterRbound(0, m->sizeLocal() + m->sizeGhost());
   SurfaceAccess::recalc(m);
   return request_rebuild(lmp, fm, after_setup);
 }
@@ -183,24 +189,7 @@ int dem_shim_mesh_place(void *lmp, void *mesh, const int *idx, const double *xyz
   FixMeshSurface *fm = as_fix(mesh);
   TriMesh *m = fm->triMesh();
   const int nall = m->sizeLocal() + m->sizeGhost();
-  double ***node = SurfaceAccess::nodes(m);
-  typedef MultiVectorContainer<double, 3, 3> NodeVec;
-  NodeVec *vc = m->prop().getElementProperty<NodeVec>("v");
-  double ***vn = vc && vc->size() >= nall ? vc->begin() : 0;
-  for (int i = 0; i < nall; i++) {
-    const int *k = idx + 3 * m->id(i);
-    for (int c = 0; c < 3; c++) {
-      const double *p = xyz + 3 * k[c];
-      node[i][c][0] = p[0];
-      node[i][c][1] = p[1];
-      node[i][c][2] = p[2];
-      if (!vn) continue;
-      const double *q = v + 3 * k[c];
-      vn[i][c][0] = q[0];
-      vn[i][c][1] = q[1];
-      vn[i][c][2] = q[2];
-    }
-  }
+  copy_nodes(m, idx, xyz, v);
   SurfaceAccess::centres(m, nall);
   SurfaceAccess::surfaces(m, nall);
   return request_rebuild(lmp, fm, after_setup);

@@ -41,23 +41,35 @@ static void tilted(const double *c, double s, double h, double *xyz) {
 
 /* Sphere at c pushed by the wall, nodes set every `every` steps; returns its final velocity
  * and the wall impulse along n. */
-static void push(int every, double *vel, double *impulse, int check_nodes) {
-  DemParams p;
-  params(&p);
-  const double R = 0.5 * p.diameter, c[3] = {0, 0, 0.02}, s0 = R + 3e-3, h = 8e-3;
-  double n[3] = {0, -sin(TILT), cos(TILT)};
-  DemBridge *b = NULL;
-  T_CHECK(dem_bridge_create(t_log(), &b));
-  T_CHECK(dem_bridge_setup(b, &p));
-  double xyz[12], vn[12];
-  int tri[6], id, ins;
-  t_square(0, 0, 0, h, xyz, tri);
-  T_CHECK(dem_bridge_add_mesh(b, "pusher", 4, xyz, 2, tri, DEM_WALL_STEEL, &id));
-  T_CHECK(dem_bridge_insert_cylinder(b, c[0], c[1], R, c[2] - R, c[2] + R, 1, &ins));
+/* The push's set-up: bridge *b with the pusher (mesh *id, horizontal at z = 0 until the first
+ * update) and the sphere at C; node velocities vn [out] 12 (W along n). Returns the steps of
+ * the push. */
+static const double C[3] = {0, 0, 0.02}, HALF = 8e-3;
+static double s_start(const DemParams *p) { return 0.5 * p->diameter + 3e-3; }
+static int start_push(const DemParams *p, DemBridge **b, int *id, double vn[12]) {
+  const double R = 0.5 * p->diameter, n[3] = {0, -sin(TILT), cos(TILT)};
+  double xyz[12];
+  int tri[6], ins;
+  T_CHECK(dem_bridge_create(t_log(), b));
+  T_CHECK(dem_bridge_setup(*b, p));
+  t_square(0, 0, 0, HALF, xyz, tri);
+  T_CHECK(dem_bridge_add_mesh(*b, "pusher", 4, xyz, 2, tri, DEM_WALL_STEEL, id));
+  T_CHECK(dem_bridge_insert_cylinder(*b, C[0], C[1], R, C[2] - R, C[2] + R, 1, &ins));
   t_true("sphere inserted", ins == 1);
   for (int i = 0; i < 4; i++)
     for (int k = 0; k < 3; k++) vn[3 * i + k] = W * n[k];
-  int nsteps = (int)((s0 - R + 2e-3) / W / p.dt) + 300;
+  return (int)((s_start(p) - R + 2e-3) / W / p->dt) + 300;
+}
+
+static void push(int every, double *vel, double *impulse, int check_nodes) {
+  DemParams p;
+  params(&p);
+  const double s0 = s_start(&p), *c = C, h = HALF;
+  double n[3] = {0, -sin(TILT), cos(TILT)};
+  DemBridge *b = NULL;
+  double xyz[12], vn[12];
+  int id;
+  int nsteps = start_push(&p, &b, &id, vn);
   double J = 0, f[6];
   for (int step = 0; step < nsteps; step += every) {
     double s = s0 - W * step * p.dt;
@@ -92,19 +104,11 @@ static void push(int every, double *vel, double *impulse, int check_nodes) {
 static void push_path(int cheap, double *x, double *vel) {
   DemParams p;
   params(&p);
-  const double R = 0.5 * p.diameter, c[3] = {0, 0, 0.02}, s0 = R + 3e-3, h = 8e-3;
-  double n[3] = {0, -sin(TILT), cos(TILT)};
+  const double s0 = s_start(&p), *c = C, h = HALF;
   DemBridge *b = NULL;
-  T_CHECK(dem_bridge_create(t_log(), &b));
-  T_CHECK(dem_bridge_setup(b, &p));
   double xyz[12], x0[12], x1[12], vn[12];
-  int tri[6], id, ins;
-  t_square(0, 0, 0, h, xyz, tri);
-  T_CHECK(dem_bridge_add_mesh(b, "pusher", 4, xyz, 2, tri, DEM_WALL_STEEL, &id));
-  T_CHECK(dem_bridge_insert_cylinder(b, c[0], c[1], R, c[2] - R, c[2] + R, 1, &ins));
-  for (int i = 0; i < 4; i++)
-    for (int k = 0; k < 3; k++) vn[3 * i + k] = W * n[k];
-  int nsteps = (int)((s0 - R + 2e-3) / W / p.dt) + 300;
+  int id;
+  int nsteps = start_push(&p, &b, &id, vn);
   tilted(c, s0, h, x0);
   tilted(c, s0 - W * nsteps * p.dt, h, x1);
   if (cheap) T_CHECK(dem_bridge_set_mesh_path(b, id, x0, x1, vn));
