@@ -51,6 +51,13 @@ typedef struct {
   double *path; /* dem_bridge_set_mesh_path's ends: start, then end, 2*3*nverts [owned,
                  * allocated on first use]; path_set: they are valid */
   int path_set;
+  /* the node positions LIGGGHTS' rebuild test compares with: those of its last neighbour build
+   * (caller order) [owned, first use], valid after built_epoch (see note_builds); used: 1 for
+   * a vertex of some triangle [owned, first use] */
+  double *built;
+  long long built_epoch[3];
+  int built_valid;
+  unsigned char *used;
   void *shim;  /* the fix mesh/surface [borrowed from LIGGGHTS] */
 } DemMesh;
 
@@ -107,6 +114,9 @@ struct DemBridge {
   int np, rank, procs[3];
   double *scratch;
   size_t scratch_cap;
+  /* set-ups started (runs without "pre no"): with LIGGGHTS' build count, which a set-up
+   * resets, and the step of its last build, they tell whether a build happened */
+  long long setups;
 };
 
 static void ck_free(Checkpoint **ck);
@@ -152,6 +162,7 @@ static int send(DemBridge *b, const char *fmt, ...) {
   va_end(ap);
   SA_REQUIRE(n >= 0 && n < (int)sizeof buf, SA_ERR_INTERNAL, "LIGGGHTS command too long: %.60s...",
              buf);
+  if (!strncmp(buf, "run ", 4) && !strstr(buf, "pre no")) b->setups++;
   lammps_command(b->lmp, buf);
   return 0;
 }
@@ -371,6 +382,8 @@ static void destroy_here(DemBridge **pb) {
     free(b->mesh[i].v);
     free(b->mesh[i].acc);
     free(b->mesh[i].path);
+    free(b->mesh[i].built);
+    free(b->mesh[i].used);
   }
   free(b->mesh);
   ck_free(&b->ck);
@@ -396,6 +409,7 @@ static int log_append_here(DemBridge *b, const char *path) {
 static int command_here(DemBridge *b, const char *cmd) {
   SA_REQUIRE(b && b->lmp, SA_ERR_INTERNAL, "DEM bridge not started");
   SA_REQUIRE(cmd, SA_ERR_INTERNAL, "no command");
+  if (!strncmp(cmd, "run ", 4) && !strstr(cmd, "pre no")) b->setups++;
   lammps_command(b->lmp, (char *)cmd);
   b->need_setup = 1;
   return 0;
@@ -822,12 +836,14 @@ int dem_bridge_mesh_ntri(DemBridge *b, int id) {
 
 static int check_nodes(const DemBridge *b, const DemMesh *m, const double *xyz,
                        const double *v);
+static int note_builds(DemBridge *b, DemMesh *m);
 
 static int set_mesh_nodes_here(DemBridge *b, int id, const double *xyz, const double *v) {
   DemMesh *m = NULL;
   SA_CHECK(mesh_get(b, id, &m));
   SA_REQUIRE(xyz, SA_ERR_INPUT, "mesh '%s': no node positions", m->fix_id + 5);
   SA_CHECK(check_nodes(b, m, xyz, v));
+  SA_CHECK(note_builds(b, m));
   m->path_set = 0;
   memcpy(m->xyz, xyz, 3 * (size_t)m->nverts * sizeof *xyz);
   if (v)
@@ -871,6 +887,49 @@ static int set_mesh_path_here(DemBridge *b, int id, const double *x0, const doub
   return 0;
 }
 
+/* Before mesh m's nodes change. LIGGGHTS stores the node positions of every neighbour build as
+ * the reference of its rebuild test (storeNodePosRebuild); a build since the last change used
+ * the nodes m holds now, so they become the reference here too. Builds are seen on every rank
+ * alike: the build count, the step of the last build and the set-ups started. */
+static int note_builds(DemBridge *b, DemMesh *m) {
+  if (!b->ran) {
+    m->built_valid = 0;
+    return 0;
+  }
+  long long e[3];
+  dem_shim_builds(b->lmp, &e[0], &e[1]);
+  e[2] = b->setups;
+  if (m->built_valid && !memcmp(e, m->built_epoch, sizeof e)) return 0;
+  size_t n = 3 * (size_t)m->nverts;
+  if (!m->built) SA_CALLOC(m->built, n);
+  memcpy(m->built, m->xyz, n * sizeof *m->xyz);
+  memcpy(m->built_epoch, e, sizeof e);
+  m->built_valid = 1;
+  return 0;
+}
+
+/* LIGGGHTS' rebuild test (MultiNodeMesh::decideRebuild: a node of some triangle moved more than
+ * half the skin since the last build, the same arithmetic), on every rank from the whole mesh
+ * instead of each rank's triangles and a reduction: requests the rebuild at the next step. */
+static int request_rebuild_if_moved(DemBridge *b, DemMesh *m) {
+  if (!b->ran || !m->built_valid) return 0;
+  if (!m->used) {
+    SA_CALLOC(m->used, (size_t)m->nverts);
+    for (int k = 0; k < 3 * m->ntri; k++) m->used[m->tri[k]] = 1;
+  }
+  double skin = dem_shim_skin(b->lmp), triggersq = 0.25 * skin * skin;
+  for (int i = 0; i < m->nverts; i++) {
+    if (!m->used[i]) continue;
+    const double *x = m->xyz + 3 * i, *o = m->built + 3 * i;
+    double d[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
+    if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > triggersq) {
+      dem_shim_mesh_request_rebuild(b->lmp, m->shim);
+      return 0;
+    }
+  }
+  return 0;
+}
+
 static int place_on_path_here(DemBridge *b, int id, double a) {
   DemMesh *m = NULL;
   SA_CHECK(mesh_get(b, id, &m));
@@ -878,11 +937,12 @@ static int place_on_path_here(DemBridge *b, int id, double a) {
              m->fix_id + 5);
   SA_REQUIRE(a >= 0 && a <= 1, SA_ERR_INPUT, "mesh '%s': path fraction %g outside [0, 1]",
              m->fix_id + 5, a);
+  SA_CHECK(note_builds(b, m));
   size_t n = 3 * (size_t)m->nverts;
   const double *x0 = m->path, *x1 = m->path + n;
   for (size_t k = 0; k < n; k++) m->xyz[k] = x0[k] + a * (x1[k] - x0[k]);
-  dem_shim_mesh_place(b->lmp, m->shim, m->idx, m->xyz, m->v, b->ran);
-  return 0;
+  dem_shim_mesh_place(m->shim, m->idx, m->xyz, m->v);
+  return request_rebuild_if_moved(b, m);
 }
 
 static int place_flat_mesh_here(DemBridge *b, int id, double z, double vz) {
@@ -899,13 +959,14 @@ static int place_flat_mesh_here(DemBridge *b, int id, double z, double vz) {
     SA_REQUIRE(inside_box(&b->p, p), SA_ERR_DOMAIN, "mesh '%s': node %d (%g, %g, %g) left "
                "the DEM box", m->fix_id + 5, i, p[0], p[1], p[2]);
   }
+  SA_CHECK(note_builds(b, m));
   for (int i = 0; i < m->nverts; i++) {
     m->xyz[3 * i + 2] = z;
     m->v[3 * i] = m->v[3 * i + 1] = 0, m->v[3 * i + 2] = vz;
   }
   m->path_set = 0;
-  dem_shim_mesh_place_flat(b->lmp, m->shim, z, vz, b->ran);
-  return 0;
+  dem_shim_mesh_place_flat(m->shim, z, vz);
+  return request_rebuild_if_moved(b, m);
 }
 
 static int mesh_forces_here(DemBridge *b, int id, double *f) {
@@ -2174,12 +2235,9 @@ int dem_bridge_mesh_forces_add(DemBridge *b) {
     size_t n = 3 * (size_t)m->ntri;
     if (!m->acc) SA_CALLOC(m->acc, n);
     if (!b->ran) continue;
-    SA_CHECK(grow_double(&b->scratch, &b->scratch_cap, n));
-    /* this rank's triangles (all on one rank), in the order of dem_bridge_mesh_forces */
-    memset(b->scratch, 0, n * sizeof *b->scratch);
-    SA_REQUIRE(dem_shim_mesh_forces(m->shim, b->scratch) == 0, SA_ERR_LIBRARY,
+    /* this rank's triangles (all on one rank), term by term as dem_bridge_mesh_forces + sum */
+    SA_REQUIRE(dem_shim_mesh_forces_add(m->shim, m->acc) == 0, SA_ERR_LIBRARY,
                "mesh '%s' has no force (stress) data", m->fix_id + 5);
-    for (size_t k = 0; k < n; k++) m->acc[k] += b->scratch[k];
   }
   return 0;
 }

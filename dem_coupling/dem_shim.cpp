@@ -21,6 +21,7 @@
 #include <lammps.h>
 #include <modify.h>
 #include <update.h>
+#include <neighbor.h>
 #include <fix.h>
 #include <fix_mesh_surface.h>
 #include <fix_contact_history_mesh.h>
@@ -184,20 +185,16 @@ int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double 
   return request_rebuild(lmp, fm, after_setup);
 }
 
-int dem_shim_mesh_place(void *lmp, void *mesh, const int *idx, const double *xyz,
-                        const double *v, int after_setup) {
-  FixMeshSurface *fm = as_fix(mesh);
-  TriMesh *m = fm->triMesh();
+void dem_shim_mesh_place(void *mesh, const int *idx, const double *xyz, const double *v) {
+  TriMesh *m = as_fix(mesh)->triMesh();
   const int nall = m->sizeLocal() + m->sizeGhost();
   copy_nodes(m, idx, xyz, v);
   SurfaceAccess::centres(m, nall);
   SurfaceAccess::surfaces(m, nall);
-  return request_rebuild(lmp, fm, after_setup);
 }
 
-int dem_shim_mesh_place_flat(void *lmp, void *mesh, double z, double vz, int after_setup) {
-  FixMeshSurface *fm = as_fix(mesh);
-  TriMesh *m = fm->triMesh();
+void dem_shim_mesh_place_flat(void *mesh, double z, double vz) {
+  TriMesh *m = as_fix(mesh)->triMesh();
   const int nall = m->sizeLocal() + m->sizeGhost();
   double ***node = SurfaceAccess::nodes(m);
   typedef MultiVectorContainer<double, 3, 3> NodeVec;
@@ -211,7 +208,18 @@ int dem_shim_mesh_place_flat(void *lmp, void *mesh, double z, double vz, int aft
   /* every edge vector keeps its z component 0 exactly, so edges, normals and areas are the
    * ones a recomputation would give, bit for bit (test dem_bridge_place) */
   SurfaceAccess::centres(m, nall);
-  return request_rebuild(lmp, fm, after_setup);
+}
+
+void dem_shim_mesh_request_rebuild(void *lmp, void *mesh) {
+  *as_fix(mesh)->get_next_reneighbor_ptr() = static_cast<LAMMPS *>(lmp)->update->ntimestep + 1;
+}
+
+double dem_shim_skin(void *lmp) { return static_cast<LAMMPS *>(lmp)->neighbor->skin; }
+
+void dem_shim_builds(void *lmp, long long *builds, long long *last) {
+  Neighbor *n = static_cast<LAMMPS *>(lmp)->neighbor;
+  *builds = n->ncalls;
+  *last = n->lastcall;
 }
 
 int dem_shim_mesh_forces(void *mesh, double *f) {
@@ -226,6 +234,22 @@ int dem_shim_mesh_forces(void *mesh, double *f) {
     o[0] = fe[i][0];
     o[1] = fe[i][1];
     o[2] = fe[i][2];
+  }
+  return 0;
+}
+
+int dem_shim_mesh_forces_add(void *mesh, double *sum) {
+  TriMesh *m = as_fix(mesh)->triMesh();
+  VectorContainer<double, 3> *fc = m->prop().getElementProperty<VectorContainer<double, 3> >("f");
+  if (!fc) return -1;
+  const int n = m->sizeLocal();
+  if (fc->size() < n) return -1;
+  double **fe = fc->begin();
+  for (int i = 0; i < n; i++) {
+    double *o = sum + 3 * m->id(i);
+    o[0] += fe[i][0];
+    o[1] += fe[i][1];
+    o[2] += fe[i][2];
   }
   return 0;
 }

@@ -35,19 +35,28 @@ int dem_shim_mesh_make_moving(void *mesh);
  * 0 if not. */
 int dem_shim_mesh_set_nodes(void *lmp, void *mesh, const int *idx, const double *xyz,
                             const double *v, int after_setup);
-/* dem_shim_mesh_set_nodes (v required) without the two quantities that are summed over the
- * ranks and read only by insertion faces, never by a wall contact: the mesh's global bounding
- * box and total area. Every other quantity gets the same bits; the one reduction left is the
- * rebuild decision. For a mesh moved every DEM step. */
-int dem_shim_mesh_place(void *lmp, void *mesh, const int *idx, const double *xyz,
-                        const double *v, int after_setup);
+/* dem_shim_mesh_set_nodes (v required) without the quantities that are summed over the ranks:
+ * the mesh's global bounding box and total area (read only by insertion faces, never by a wall
+ * contact) and the rebuild decision (the caller decides, dem_shim_mesh_request_rebuild). Every
+ * other quantity gets the same bits. For a mesh moved every DEM step. */
+void dem_shim_mesh_place(void *mesh, const int *idx, const double *xyz, const double *v);
 /* A flat mesh (every node at one height) moved to height z [m] with node velocity (0, 0, vz):
  * only the node heights, velocities, centres and bounding radii change (edges, normals and
- * areas of a flat mesh do not); no global box or area, as dem_shim_mesh_place. */
-int dem_shim_mesh_place_flat(void *lmp, void *mesh, double z, double vz, int after_setup);
+ * areas of a flat mesh do not); otherwise as dem_shim_mesh_place. */
+void dem_shim_mesh_place_flat(void *mesh, double z, double vz);
+/* A neighbour rebuild at the next step (what MultiNodeMesh::decideRebuild asks for when a node
+ * moved more than half the skin since the last build). */
+void dem_shim_mesh_request_rebuild(void *lmp, void *mesh);
+/* The neighbour skin [m]; the neighbour builds since the last set-up (a set-up resets the
+ * count) and the step of the last one. */
+double dem_shim_skin(void *lmp);
+void dem_shim_builds(void *lmp, long long *builds, long long *last);
 /* Force of the last step on each triangle, f [out] at 3*id [N]; -1 if the mesh tracks no
  * stress. */
 int dem_shim_mesh_forces(void *mesh, double *f);
+/* dem_shim_mesh_forces added to sum [in/out] at 3*id (this rank's triangles only; the others'
+ * entries are left as they are, the bits of adding 0 to a sum that started at +0). */
+int dem_shim_mesh_forces_add(void *mesh, double *sum);
 /* The grain-wall contacts in the mesh's contact history (fix contacthistory/mesh): for each,
  * the grain's atom tag, the triangle id and the first three history values (the tangential
  * spring of `tangential history`), tag, tri [out] max, hist [out] 3 max. Returns how many
