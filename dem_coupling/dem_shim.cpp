@@ -70,33 +70,65 @@ struct SurfaceAccess : TriMesh {
       (m->*rp)(i) = rb;
     }
   }
-  /* SurfaceMesh::recalcLocalSurfProperties and recalcGhostSurfProperties element by element,
-   * without the mesh's total area (a sum over the ranks, read only by insertion faces). */
+  /* SurfaceMesh::recalcLocalSurfProperties and recalcGhostSurfProperties for elements [0, n),
+   * without the mesh's total area (a sum over the ranks, read only by insertion faces): edge
+   * vectors and lengths, surface normal, edge normals, obtuse-angle flag, area, accumulated
+   * area. The operations of SurfaceMesh::calcEdgeVecLen, calcSurfaceNorm, calcEdgeNormals,
+   * calcObtuseAngleIndex and TriMesh::calcArea in their order, so the same bits, in one pass
+   * over each element's data (theirs are five calls per element, and calcArea allocates). */
   static void surfaces(TriMesh *m, int n) {
-    typedef SurfaceMeshBase S;
-    void (S::*vec_len)(int, double *, double **) = &SurfaceAccess::calcEdgeVecLen;
-    void (S::*norm)(int, double *) = &SurfaceAccess::calcSurfaceNorm;
-    void (S::*edge_norms)(int, double **) = &SurfaceAccess::calcEdgeNormals;
-    void (S::*obtuse)(int, int, double &) = &SurfaceAccess::calcObtuseAngleIndex;
-    double (TriMesh::*calc_area)(int) = &SurfaceAccess::calcArea;
-    double *(S::*len)(int) = &SurfaceAccess::edgeLen;
-    double **(S::*vec)(int) = &SurfaceAccess::edgeVec;
-    double *(S::*snorm)(int) = &SurfaceAccess::surfaceNorm;
-    double **(S::*enorm)(int) = &SurfaceAccess::edgeNorm;
-    double &(S::*area)(int) = &SurfaceAccess::area;
-    double &(S::*area_acc)(int) = &SurfaceAccess::areaAcc;
+    typedef MultiVectorContainer<double, 3, 3> MV;
+    typedef VectorContainer<double, 3> V3;
+    double ***node = nodes(m);
+    double **len = m->prop().getElementProperty<V3>("edgeLen")->begin();
+    double ***vec = m->prop().getElementProperty<MV>("edgeVec")->begin();
+    double ***enorm = m->prop().getElementProperty<MV>("edgeNorm")->begin();
+    double **snorm = m->prop().getElementProperty<V3>("surfaceNorm")->begin();
+    double *area = m->prop().getElementProperty<ScalarContainer<double> >("area")->begin();
+    double *acc = m->prop().getElementProperty<ScalarContainer<double> >("areaAcc")->begin();
+    int *obtuse = m->prop().getElementProperty<ScalarContainer<int> >("obtuseAngleIndex")->begin();
     for (int i = 0; i < n; i++) {
-      (m->*vec_len)(i, (m->*len)(i), (m->*vec)(i));
-      (m->*norm)(i, (m->*snorm)(i));
-      (m->*edge_norms)(i, (m->*enorm)(i));
+      double **e = vec[i], *sn = snorm[i];
       for (int j = 0; j < 3; j++) {
-        double dot;
-        (m->*obtuse)(i, j, dot);
+        vectorSubtract3D(node[i][(j + 1) % 3], node[i][j], e[j]);
+        len[i][j] = vectorMag3D(e[j]);
+        vectorScalarDiv3D(e[j], len[i][j]);
       }
-      (m->*area)(i) = (m->*calc_area)(i);
-      (m->*area_acc)(i) = (m->*area)(i);
-      if (i > 0) (m->*area_acc)(i) += (m->*area_acc)(i - 1);
+      surface_norm(e, sn);
+      for (int j = 0; j < 3; j++) {
+        double *en = enorm[i][j];
+        vectorCross3D(e[j], sn, en);
+        if (vectorMag3D(en) < 1e-15)
+          vectorCopy3D(e[(j + 1) % 3], en);
+        else
+          vectorScalarDiv3D(en, vectorMag3D(en));
+      }
+      /* calcObtuseAngleIndex is called for corners 0, 1, 2 and each call overwrites the flag:
+       * the last one decides */
+      for (int j = 0; j < 3; j++) {
+        if (vectorDot3D(e[j], e[(j + 2) % 3]) > 0.)
+          obtuse[i] = j;
+        else
+          obtuse[i] = SurfaceMeshBase::NO_OBTUSE_ANGLE;
+      }
+      double t[3];
+      vectorCross3D(e[0], e[1], t);
+      area[i] = 0.5 * vectorMag3D(t) * len[i][0] * len[i][1];
+      acc[i] = area[i];
+      if (i > 0) acc[i] += acc[i - 1];
     }
+  }
+  /* SurfaceMesh::calcSurfaceNorm: the normal from the first pair of edges that is not
+   * parallel (then from fixed vectors), normalised. */
+  static void surface_norm(double **e, double *sn) {
+    static const double t1[] = {1.1233, 2.123231, -3.3343434}, t2[] = {1.1233, -2.123231, 3.3343434};
+    const double *pairs[7][2] = {{e[0], e[1]}, {e[1], e[2]}, {e[2], e[0]}, {e[0], t1},
+                                 {e[1], t1},   {e[0], t2},   {e[1], t2}};
+    for (int k = 0; k < 7; k++) {
+      vectorCross3D(pairs[k][0], pairs[k][1], sn);
+      if (!(vectorMag3D(sn) < 1e-15)) break; /* LIGGGHTS' test, NaN included */
+    }
+    vectorScalarDiv3D(sn, vectorMag3D(sn));
   }
 };
 
