@@ -36,7 +36,7 @@ def main():
     ivs = arg("--variants", "iv5e-4,iv2.5e-4,iv1.25e-4").split(",")
     seeds = arg("--seeds", "").split(",")
     finest = arg("--ref", ivs[-1])
-    data, cpu = {}, {}  # (seed, iv) -> {mark: (bend, force)}, iv -> [cpu]
+    data, cpu, skipped = {}, {}, []  # (seed, iv) -> {mark: (bend, force)}, iv -> [cpu]
     for s in seeds:
         for iv in ivs:
             d = os.path.join(out, "s%s_%s" % (s, iv))
@@ -44,6 +44,9 @@ def main():
                 rows = read_curve(os.path.join(d, "bending.csv"))
                 summ = read_summary(os.path.join(d, "summary.ini"))
             except OSError:
+                continue
+            if summ.get("result.status", "completed") != "completed":
+                skipped.append("s%s_%s (%s)" % (s, iv, summ.get("result.status")))
                 continue
             a0 = rows[0]["bending_angle"]
             got = {}
@@ -59,10 +62,12 @@ def main():
     lines = ["# %s (%s)" % (arg("--title", "Variants against the grain noise"),
                             os.path.basename(out.rstrip("/"))),
              "",
-             "Beds (seeds) with every interval: %d of %d. Bend b = angle(x) - angle(0) [deg]; "
+             "Beds (seeds) with every variant: %d of %d. Bend b = angle(x) - angle(0) [deg]; "
              "mean +- standard error over the beds; differences paired by bed against the "
              "reference variant (%s)." % (
                  sum(all((s, iv) in data for iv in ivs) for s in seeds), len(seeds), finest),
+             "",
+             "Left out (not completed): %s." % (", ".join(skipped) or "none"),
              "",
              "| variant | x [mm] | beds | mean bend [deg] | mean force [N] | bend - reference [deg] (paired) | in SE | force - reference [N] | median CPU [s] |",
              "|---|---|---|---|---|---|---|---|---|"]
@@ -100,10 +105,9 @@ def main():
             for x in xs:
                 b = []
                 for s in seeds:
-                    try:
-                        rows = read_curve(os.path.join(out, "s%s_%s" % (s, iv), "bending.csv"))
-                    except OSError:
+                    if (s, iv) not in data:
                         continue
+                    rows = read_curve(os.path.join(out, "s%s_%s" % (s, iv), "bending.csv"))
                     a = value_at(rows, x * 1e-3, "bending_angle")
                     if a is not None:
                         b.append(a - rows[0]["bending_angle"])
