@@ -174,6 +174,22 @@ void copy_nodes(TriMesh *m, const int *idx, const double *xyz, const double *v) 
   }
 }
 
+/* The stress module's force of the last step on each owned triangle, written (add = 0) or
+ * added (add = 1) to out at 3*id. */
+int forces_to(void *mesh, double *out, int add) {
+  TriMesh *m = as_fix(mesh)->triMesh();
+  VectorContainer<double, 3> *fc = m->prop().getElementProperty<VectorContainer<double, 3> >("f");
+  if (!fc) return -1;
+  const int n = m->sizeLocal();
+  if (fc->size() < n) return -1;
+  double **fe = fc->begin();
+  for (int i = 0; i < n; i++) {
+    double *o = out + 3 * m->id(i);
+    for (int k = 0; k < 3; k++) o[k] = add ? o[k] + fe[i][k] : fe[i][k];
+  }
+  return 0;
+}
+
 }  // namespace
 
 extern "C" {
@@ -254,37 +270,9 @@ void dem_shim_builds(void *lmp, long long *builds, long long *last) {
   *last = n->lastcall;
 }
 
-int dem_shim_mesh_forces(void *mesh, double *f) {
-  TriMesh *m = as_fix(mesh)->triMesh();
-  VectorContainer<double, 3> *fc = m->prop().getElementProperty<VectorContainer<double, 3> >("f");
-  if (!fc) return -1;
-  const int n = m->sizeLocal();
-  if (fc->size() < n) return -1;
-  double **fe = fc->begin();
-  for (int i = 0; i < n; i++) {
-    double *o = f + 3 * m->id(i);
-    o[0] = fe[i][0];
-    o[1] = fe[i][1];
-    o[2] = fe[i][2];
-  }
-  return 0;
-}
+int dem_shim_mesh_forces(void *mesh, double *f) { return forces_to(mesh, f, 0); }
 
-int dem_shim_mesh_forces_add(void *mesh, double *sum) {
-  TriMesh *m = as_fix(mesh)->triMesh();
-  VectorContainer<double, 3> *fc = m->prop().getElementProperty<VectorContainer<double, 3> >("f");
-  if (!fc) return -1;
-  const int n = m->sizeLocal();
-  if (fc->size() < n) return -1;
-  double **fe = fc->begin();
-  for (int i = 0; i < n; i++) {
-    double *o = sum + 3 * m->id(i);
-    o[0] += fe[i][0];
-    o[1] += fe[i][1];
-    o[2] += fe[i][2];
-  }
-  return 0;
-}
+int dem_shim_mesh_forces_add(void *mesh, double *sum) { return forces_to(mesh, sum, 1); }
 
 int dem_shim_mesh_contacts(void *lmp, void *mesh, int max, int *tag, int *tri, double *hist) {
   FixContactHistoryMesh *h = as_fix(mesh)->contactHistory();
