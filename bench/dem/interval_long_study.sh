@@ -16,10 +16,7 @@ D=${2:-3e-3}
 S=${3:-3e-3}
 EXE=${EXE:-build/apps/softact}
 CASE=cases/granular_bending_dem.ini
-SEEDS=${SEEDS:-"15485863 32452843 49979687 67867967 86028121 104395301"}
-mkdir -p "$OUT"
-. "$(dirname "$0")/resume_variant.sh"
-ONE="dem.mpi_ranks=1 run.threads=1"
+. "$(dirname "$0")/seeded_beds.sh"
 one_seed() {
   s=$1
   pour_bed bed_$s 2.5e-4 dem.seed=$s $ONE > "$OUT/bed_$s.log" 2>&1

@@ -11,10 +11,7 @@ D=${2:-3e-3}
 S=${3:-3e-3}
 EXE=${EXE:-build/apps/softact}
 CASE=cases/granular_bending_dem.ini
-SEEDS=${SEEDS:-"15485863 32452843 49979687 67867967 86028121 104395301"}
-mkdir -p "$OUT"
-. "$(dirname "$0")/resume_variant.sh"
-ONE="dem.mpi_ranks=1 run.threads=1"
+. "$(dirname "$0")/seeded_beds.sh"
 for s in $SEEDS; do
   while [ ! -f "$OUT/bed_$s/summary.ini" ]; do sleep 10; done
   for v in 0.04 0.01; do
