@@ -8,6 +8,8 @@
 # one thread per run; the CPU times include the pour (the interval runs' do not).
 #   bench/dem/softening_long_study.sh OUT [BEAD_DIAMETER_M] [STROKE_M] [SOFTENINGS]
 # Ends with bench/dem/paired_stats.py (OUT/softening_stats.md, .png).
+# Stop 35: at softening 30 both first beds broke down (unconverged coupling steps, docs/dem.md
+# "The full stroke with stiffer grains"), so the study waits on the coupling.
 set -eu
 OUT=$1
 D=${2:-3e-3}
