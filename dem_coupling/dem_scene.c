@@ -87,7 +87,8 @@ static const SaParam coupling_params[] = {
     {"iteration_tol", SA_PARAM_REAL, P(iteration_tol), "-", "0.03", 0, 1, SA_MIN_OPEN, NULL,
      "an iterated step is converged when the quasi-Newton update of the wall (2-norm over its "
      "nodes) is below this fraction of the wall's displacement by the grains so far (from its "
-     "hanging shape before the pour)"},
+     "hanging shape before the pour); a step whose fixed-point residual is still above 10 times "
+     "it after the last pass stops the run with a diagnosis"},
     {"qn_reuse", SA_PARAM_INT, P(qn_reuse), "-", "8", 0, 1000, 0, NULL,
      "coupling steps whose quasi-Newton columns are reused (the bed's response changes slowly)"},
     {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,
