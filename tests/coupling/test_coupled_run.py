@@ -32,6 +32,18 @@ def balance_fails(rows, W, label):
     return out
 
 
+def resumed_run(out, args, tmp, label, keys):
+    """A copy of the run in out (its rows dropped) resumed from its checkpoint with the extra
+    key=value settings: (folder, completed process)."""
+    d = os.path.join(tmp, label)
+    shutil.copytree(out, d)
+    os.remove(os.path.join(d, "bending.csv"))
+    sets = sum([["--set", kv] for kv in ["coupling.resume=true"] + keys], [])
+    r = subprocess.run([a if a != out else d for a in args] + sets, capture_output=True,
+                       text=True, timeout=1500)
+    return d, r
+
+
 exe, case = sys.argv[1], sys.argv[2]
 with tempfile.TemporaryDirectory() as tmp:
     out = os.path.join(tmp, "run")
@@ -82,13 +94,9 @@ with tempfile.TemporaryDirectory() as tmp:
         fails.append("the step checkpoint was left behind")
     # the staggered scheme with Robin springs (iterations = 1) from the same checkpoint: it
     # must finish with every run check and the bed's force balance (momentum) holding
-    out3 = os.path.join(tmp, "staggered")
-    shutil.copytree(out, out3)
-    os.remove(os.path.join(out3, "bending.csv"))
-    args3 = [a if a != out else out3 for a in args] + [
-        "--set", "coupling.resume=true", "--set", "coupling.iterations=1",
-        "--set", "coupling.interface_stiffness=1", "--set", "coupling.interface_tangential=1"]
-    r = subprocess.run(args3, capture_output=True, text=True, timeout=1500)
+    out3, r = resumed_run(out, args, tmp, "staggered", [
+        "coupling.iterations=1", "coupling.interface_stiffness=1",
+        "coupling.interface_tangential=1"])
     if r.returncode != 0:
         fails.append(f"staggered run failed: {r.returncode} {r.stderr[-1500:]}")
     else:
@@ -101,13 +109,8 @@ with tempfile.TemporaryDirectory() as tmp:
     # (the FEM's wall is tried next); when none are left the run check stops the run with its
     # diagnosis. With a limit below any loaded bed's overlap (1e-6 of d: Hertz overlaps of the
     # bed's weight alone are ~1e-4 of d) and 3 passes, exactly two passes are refused
-    out4 = os.path.join(tmp, "overlap_rule")
-    shutil.copytree(out, out4)
-    os.remove(os.path.join(out4, "bending.csv"))
-    args4 = [a if a != out else out4 for a in args] + [
-        "--set", "coupling.resume=true", "--set", "coupling.iterations=3",
-        "--set", "dem.max_overlap=1e-6"]
-    r = subprocess.run(args4, capture_output=True, text=True, timeout=1500)
+    out4, r = resumed_run(out, args, tmp, "overlap_rule",
+                          ["coupling.iterations=3", "dem.max_overlap=1e-6"])
     # the file logs every level; a resumed run may append to it: count the new lines only
     mark = "not accepted, the FEM's wall is tried next"
     refused = (open(os.path.join(out4, "softact.log")).read().count(mark)
@@ -130,13 +133,8 @@ with tempfile.TemporaryDirectory() as tmp:
     # pass is a failed step: the run stops with a diagnosis and keeps the rows before it (it
     # was accepted with a warning, and a stiff bed's angle then jumped, docs/dem.md). Two passes
     # cannot reach 1e-8 of the wall's displacement.
-    out5 = os.path.join(tmp, "unconverged")
-    shutil.copytree(out, out5)
-    os.remove(os.path.join(out5, "bending.csv"))
-    args5 = [a if a != out else out5 for a in args] + [
-        "--set", "coupling.resume=true", "--set", "coupling.iterations=2",
-        "--set", "coupling.iteration_tol=1e-9"]
-    r = subprocess.run(args5, capture_output=True, text=True, timeout=1500)
+    out5, r = resumed_run(out, args, tmp, "unconverged",
+                          ["coupling.iterations=2", "coupling.iteration_tol=1e-9"])
     st5 = read_summary(out5) if os.path.exists(os.path.join(out5, "summary.ini")) else {}
     rows5 = list(csv.DictReader(open(os.path.join(out5, "bending.csv")).readlines()[1:]))
     if (r.returncode != 2 or "did not converge in 2 passes" not in r.stderr
