@@ -64,9 +64,10 @@ typedef struct {
   /* iterated coupling step ([coupling] iterations > 1): quasi-Newton, the step's start */
   DemIqn *iqn;
   FemSnapshot *snap;
-  double *x_start, *x_try, *x_next, *f_app0, *x_hang;
+  double *x_start, *x_try, *x_next, *f_app0, *x_hang, *x_prev0;
   double t_rollback, it_res, it_res_max;
   int it_last, it_sum, it_max, it_steps, it_unconverged;
+  int it_cuts;                /* coupling steps halved because their iteration did not converge */
   double it_fp_max;           /* largest fixed-point residual |x~ - x| / scale accepted */
   int it_overlap;             /* passes not accepted for their overlap */
   /* DEM */
@@ -206,9 +207,9 @@ static int setup_fem(Run *g) {
   if (g->sc->coupling.iterations > 1) {
     g->x_start = malloc(sizeof(double) * v3), g->x_try = malloc(sizeof(double) * v3);
     g->x_next = malloc(sizeof(double) * v3), g->f_app0 = malloc(sizeof(double) * v3);
-    g->x_hang = malloc(sizeof(double) * v3);
-    SA_REQUIRE(g->x_start && g->x_try && g->x_next && g->f_app0 && g->x_hang, SA_ERR_MEMORY,
-               "iteration buffers");
+    g->x_hang = malloc(sizeof(double) * v3), g->x_prev0 = malloc(sizeof(double) * v3);
+    SA_REQUIRE(g->x_start && g->x_try && g->x_next && g->f_app0 && g->x_hang && g->x_prev0,
+               SA_ERR_MEMORY, "iteration buffers");
     /* 3 columns per iteration at most matter; 40 hold several steps' worth */
     SA_CHECK(dem_iqn_create(3 * g->nv, 40, g->sc->coupling.qn_reuse, &g->iqn));
   }
@@ -806,7 +807,7 @@ static double dist2(const double *a, const double *b, int n) {
  * preconditioner); at the converged x their force vanishes (anchor = x), so the answer does
  * not depend on interface_stiffness. */
 static int coupling_step_iterated(Run *g, double z0, double v0, double v1, double T,
-                                  double T_last) {
+                                  double T_last, int can_cut, int *cut) {
   const DemCouplingCase *cc = &g->sc->coupling;
   int n3 = 3 * g->nv;
   size_t bytes = sizeof(double) * (size_t)n3;
@@ -819,7 +820,9 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
   SA_CHECK(fem_solver_snapshot(g->s, &g->snap));
   g->t_rollback += sa_time_now() - t0;
   memcpy(g->x_start, g->xw, bytes);
+  memcpy(g->x_prev0, g->xw_prev, bytes);
   memcpy(g->f_app0, g->f_app, bytes);
+  *cut = 0;
   /* first trial: the last step's wall motion, scaled to this step's length */
   double a = T_last > 0 ? T / T_last : 0;
   for (int k = 0; k < n3; k++) g->x_try[k] = g->xw_cur[k] + a * (g->xw_cur[k] - g->xw_prev[k]);
@@ -894,6 +897,25 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
     }
     memcpy(g->x_try, g->x_next, bytes);
   }
+  /* Not converged and the step may still be halved: back to the step's start (DEM, FEM, the
+   * wall's last motion for the extrapolation) and let the caller do it as two half steps */
+  if (can_cut && (r_last > RESIDUAL_GUARD * cc->iteration_tol || res > cc->iteration_tol)) {
+    double t_cut = sa_time_now();
+    SA_CHECK(dem_reload(g, ck, z_start));
+    SA_CHECK(fem_solver_rollback(g->s, g->snap));
+    g->t_rollback += sa_time_now() - t_cut;
+    memcpy(g->f_app, g->f_app0, bytes);
+    memcpy(g->xw, g->x_start, bytes);
+    memcpy(g->xw_cur, g->x_start, bytes);
+    memcpy(g->xw_prev, g->x_prev0, bytes);
+    dem_iqn_clear(g->iqn); /* a model of the step that failed */
+    sa_log(SA_LOG_INFO, "dem", "coupling step from piston displacement %.4f mm (%.4g ms) not "
+           "converged in %d passes (quasi-Newton update %.3g, residual %.3g of the grains' wall "
+           "displacement): halved", (g->z_contact - z0) * 1e3, T * 1e3, it + 1, res, r_last);
+    g->it_cuts++;
+    *cut = 1;
+    return 0;
+  }
   /* accepted: LIGGGHTS holds the wall at x (the trial), the FEM its answer x~ within the
    * tolerance; the next step moves the wall on from x */
   memcpy(g->xw_prev, g->x_start, bytes);
@@ -906,17 +928,17 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
   /* A residual above the guard after the last pass: the FEM's wall answers one pass's forces,
    * not the bed (measured with softening 30 on two 3 mm beds: steps accepted at 0.31-2.14
    * made the angle jump and the force collapse; docs/dem.md "The full stroke with stiffer
-   * grains"). Such a step is a failed step: stop with a diagnosis, the rows up to the last
-   * accepted step kept. A large update at a small residual is only slow. (The guard's scale,
-   * the whole displacement of the wall, still let a 2 mm bed's step pass at 0.21 that jumped
-   * the angle from 3.0 to 6.0 deg: a scale of the step's own motion is the open fix.) */
+   * grains"). Such a step is a failed step: halved above while cut_max allows, then stop with
+   * a diagnosis, the rows up to the last accepted step kept. A large update at a small
+   * residual is only slow. (The guard's scale, the whole displacement of the wall, still let a
+   * 2 mm bed's step pass at 0.21 that jumped the angle from 3.0 to 6.0 deg.) */
   if (r_last > RESIDUAL_GUARD * cc->iteration_tol) {
     g->it_unconverged++;
     return SA_ERROR(SA_ERR_NOT_CONVERGED, "coupling step from piston displacement %.3f mm did "
                     "not converge in %d passes: the wall the FEM returns differs from the wall "
                     "the grains saw by %.3g of the grains' wall displacement (at most %g): the "
                     "bed is too stiff for the iterated coupling (raise [grains] softening), or "
-                    "shorten [coupling] interval or raise [coupling] iterations",
+                    "shorten [coupling] interval or raise [coupling] iterations or cut_max",
                     (g->z_contact - z0) * 1e3, it + 1, r_last, RESIDUAL_GUARD * cc->iteration_tol);
   }
   if (res > cc->iteration_tol) {
@@ -939,15 +961,39 @@ static int bed_momentum(Run *g, double p[3]) {
   return 0;
 }
 
-/* One coupling step, the piston's speed going from v0 to v1 over T: staggered (one DEM pass,
- * one FEM solve; the wall the FEM returns is used in the next step) or iterated. */
-static int coupling_step(Run *g, double z0, double v0, double v1, double T, double T_last) {
+/* A coupling step (or part of one, depth halvings deep): staggered or iterated; an iterated
+ * step that does not converge is redone as two half steps while depth < cut_max. */
+static int coupling_step_cut(Run *g, double z0, double v0, double v1, double T, double T_last,
+                             int depth) {
   g->v_piston = v1, g->T_step = T;
   SA_CHECK(bed_momentum(g, g->p_start));
-  if (g->sc->coupling.iterations > 1 && !g->rigid)
-    return coupling_step_iterated(g, z0, v0, v1, T, T_last);
-  SA_CHECK(dem_step(g, z0, v0, v1, T));
-  return fem_step(g, T);
+  if (g->sc->coupling.iterations <= 1 || g->rigid) {
+    SA_CHECK(dem_step(g, z0, v0, v1, T));
+    return fem_step(g, T);
+  }
+  int cut;
+  SA_CHECK(coupling_step_iterated(g, z0, v0, v1, T, T_last, depth < g->sc->coupling.cut_max,
+                                  &cut));
+  if (!cut) return 0;
+  /* two halves of the step, the piston's speed still uniform in time: the first from z0 at v0
+   * to the middle speed, the second on to v1 */
+  double h = 0.5 * T, ds, vm;
+  dem_piston_at(0, v0, v1, T, h, &ds, &vm);
+  SA_CHECK(coupling_step_cut(g, z0, v0, vm, h, T_last, depth + 1));
+  SA_CHECK(coupling_step_cut(g, z0 - ds, vm, v1, h, h, depth + 1));
+  /* the next step extrapolates the wall's last motion as if made over this whole step (the
+   * schedule's step length), from the last half's */
+  for (int k = 0; k < 3 * g->nv; k++)
+    g->xw_prev[k] = g->xw_cur[k] - (T / h) * (g->xw_cur[k] - g->xw_prev[k]);
+  /* the step's row then holds the last half's averaged forces (and its force balance) */
+  return 0;
+}
+
+/* One coupling step, the piston's speed going from v0 to v1 over T: staggered (one DEM pass,
+ * one FEM solve; the wall the FEM returns is used in the next step) or iterated, halved (at
+ * most [coupling] cut_max times) while its iteration does not converge. */
+static int coupling_step(Run *g, double z0, double v0, double v1, double T, double T_last) {
+  return coupling_step_cut(g, z0, v0, v1, T, T_last, 0);
 }
 
 /* Checks after a coupling step; fills the report fields. */
@@ -1208,10 +1254,12 @@ static int write_summary(Run *g, double s_reached, const char *status, double wa
             "residual_last = %.4g\nresidual_max = %.4g\n"
             "fixed_point_residual_max = %.4g ; |x~ - x| of an accepted step / the grains' wall "
             "displacement\nunconverged_steps = %d\n"
+            "halved_steps = %d ; steps (or parts) redone as two halves, not converged\n"
             "overlap_rejected_passes = %d ; passes not accepted: an overlap above [dem] max_overlap\n"
             "rollback = %.3f ; s (DEM checkpoints, reloads and FEM snapshots)\n", g->it_steps,
             g->it_steps ? (double)g->it_sum / g->it_steps : 0.0, g->it_max, g->it_res,
-            g->it_res_max, g->it_fp_max, g->it_unconverged, g->it_overlap, g->t_rollback);
+            g->it_res_max, g->it_fp_max, g->it_unconverged, g->it_cuts, g->it_overlap,
+            g->t_rollback);
   return sa_file_commit(&f);
 }
 
@@ -1436,7 +1484,8 @@ static void run_free(Run *g) {
   free(g->mats);
   double *bufs[] = {g->xw_prev, g->xw_cur, g->xw, g->vw, g->f_tri, g->f_sum, g->f_node,
                     g->f_app, g->px, g->pv, g->pf, g->pr, g->sigma, g->vm, g->reg,
-                    g->k_if, g->n_if, g->a_if, g->x_start, g->x_try, g->x_next, g->f_app0, g->x_hang};
+                    g->k_if, g->n_if, g->a_if, g->x_start, g->x_try, g->x_next, g->f_app0, g->x_hang,
+                    g->x_prev0};
   for (size_t i = 0; i < sizeof bufs / sizeof *bufs; i++) free(bufs[i]);
   for (int k = 0; k < N_MESH; k++) free(g->mesh_x[k]), free(g->mesh_f[k]);
   free(g->piston_v);
@@ -1510,8 +1559,8 @@ int dem_granular_run(const DemScene *sc, const SaRun *run) {
            g.t_checks, g.t_out);
   if (g.iqn && started) {
     sa_log(SA_LOG_INFO, "dem", "coupling iterations: %.2f per step (most %d), rollback %.1f s, "
-           "%d steps not converged", g.it_steps ? (double)g.it_sum / g.it_steps : 0.0, g.it_max,
-           g.t_rollback, g.it_unconverged);
+           "%d steps not converged, %d halved", g.it_steps ? (double)g.it_sum / g.it_steps : 0.0,
+           g.it_max, g.t_rollback, g.it_unconverged, g.it_cuts);
     char ck[SA_STR_MAX];
     if (!sa_run_path(run, "checkpoint/step.ckpt", ck)) remove(ck);
     else sa_error_clear();

@@ -89,6 +89,11 @@ static const SaParam coupling_params[] = {
      "nodes) is below this fraction of the wall's displacement by the grains so far (from its "
      "hanging shape before the pour); a step whose fixed-point residual is still above 10 times "
      "it after the last pass stops the run with a diagnosis"},
+    {"cut_max", SA_PARAM_INT, P(cut_max), "-", "2", 0, 6, 0, NULL,
+     "most halvings of an iterated coupling step that has not converged after its passes: the "
+     "step is rolled back and done as two half steps, each of which may be halved again; a "
+     "step still not converged at the last halving stops the run if its fixed-point residual "
+     "is above the guard (0 = no halving)"},
     {"qn_reuse", SA_PARAM_INT, P(qn_reuse), "-", "8", 0, 1000, 0, NULL,
      "coupling steps whose quasi-Newton columns are reused (the bed's response changes slowly)"},
     {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,

@@ -108,9 +108,10 @@ with tempfile.TemporaryDirectory() as tmp:
     # a pass whose overlap exceeds [dem] max_overlap is never accepted while passes remain
     # (the FEM's wall is tried next); when none are left the run check stops the run with its
     # diagnosis. With a limit below any loaded bed's overlap (1e-6 of d: Hertz overlaps of the
-    # bed's weight alone are ~1e-4 of d) and 3 passes, exactly two passes are refused
+    # bed's weight alone are ~1e-4 of d) and 3 passes, exactly two passes are refused (no
+    # halving: each half step would be refused alike before the run check)
     out4, r = resumed_run(out, args, tmp, "overlap_rule",
-                          ["coupling.iterations=3", "dem.max_overlap=1e-6"])
+                          ["coupling.iterations=3", "dem.max_overlap=1e-6", "coupling.cut_max=0"])
     # the file logs every level; a resumed run may append to it: count the new lines only
     mark = "not accepted, the FEM's wall is tried next"
     refused = (open(os.path.join(out4, "softact.log")).read().count(mark)
@@ -132,15 +133,19 @@ with tempfile.TemporaryDirectory() as tmp:
     # a step whose fixed-point residual stays above the guard (10 x iteration_tol) after its last
     # pass is a failed step: the run stops with a diagnosis and keeps the rows before it (it
     # was accepted with a warning, and a stiff bed's angle then jumped, docs/dem.md). Two passes
-    # cannot reach 1e-8 of the wall's displacement.
+    # cannot reach 1e-8 of the wall's displacement. Before it stops, the step is halved
+    # (cut_max = 1): the whole step fails, then its first half, which may not be halved again.
     out5, r = resumed_run(out, args, tmp, "unconverged",
-                          ["coupling.iterations=2", "coupling.iteration_tol=1e-9"])
+                          ["coupling.iterations=2", "coupling.iteration_tol=1e-9",
+                           "coupling.cut_max=1"])
     st5 = read_summary(out5) if os.path.exists(os.path.join(out5, "summary.ini")) else {}
     rows5 = list(csv.DictReader(open(os.path.join(out5, "bending.csv")).readlines()[1:]))
     if (r.returncode != 2 or "did not converge in 2 passes" not in r.stderr
-            or st5.get("status") != "stopped early" or len(rows5) != 2):
+            or st5.get("status") != "stopped early" or len(rows5) != 2
+            or st5.get("halved_steps") != "1"):
         fails.append(f"unconverged step: exit {r.returncode}, status {st5.get('status')}, "
-                     f"{len(rows5)} rows (2 expected), stderr tail: {r.stderr[-600:]}")
+                     f"{len(rows5)} rows (2 expected), halved {st5.get('halved_steps')} (1 "
+                     f"expected), stderr tail: {r.stderr[-600:]}")
     for f in fails:
         print(f)
     sys.exit(1 if fails else 0)

@@ -2,7 +2,8 @@
  * at uniform acceleration a = speed^2 / (2 s_ramp), s_ramp = ramp_steps x interval:
  *   s(t) = a t^2 / 2 for t <= t_ramp = 2 s_ramp / speed, then s_ramp + speed (t - t_ramp),
  * sampled inside every step by dem_piston_at and summed step durations; without a ramp
- * s(t) = speed t. Also: continuity of s and v across steps, the last step cut at the stroke. */
+ * s(t) = speed t. Also: continuity of s and v across steps, the last step cut at the stroke,
+ * and a step halved into two (each half follows the whole step's motion). */
 #include <math.h>
 #include <stdio.h>
 
@@ -39,6 +40,18 @@ static void run(int ramp_steps) {
       snprintf(what, sizeof what, "ramp %d step %d: v(t) closed form", ramp_steps, k);
       close_to(what, v, v_ref, 1e-9);
       if (q == 8) s_prev = s, v_prev = v;
+    }
+    /* a step halved (an iterated step that did not converge, dem_granular.c): the second half
+     * starts at the middle of the whole step and follows the same closed form */
+    double sm, vm;
+    dem_piston_at(0, v0, v1, T, 0.5 * T, &sm, &vm);
+    for (int q = 0; q <= 4; q++) {
+      double tau = 0.5 * T * q / 4, s, v, s_whole, v_whole;
+      dem_piston_at(s0 + sm, vm, v1, 0.5 * T, tau, &s, &v);
+      dem_piston_at(s0, v0, v1, T, 0.5 * T + tau, &s_whole, &v_whole);
+      snprintf(what, sizeof what, "ramp %d step %d: second half of the halved step", ramp_steps, k);
+      close_to(what, s, s_whole, 1e-15);
+      close_to(what, v, v_whole, 1e-12);
     }
     t += T;
   }
