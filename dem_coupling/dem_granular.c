@@ -212,6 +212,7 @@ static int setup_fem(Run *g) {
                SA_ERR_MEMORY, "iteration buffers");
     /* 3 columns per iteration at most matter; 40 hold several steps' worth */
     SA_CHECK(dem_iqn_create(3 * g->nv, 40, g->sc->coupling.qn_reuse, &g->iqn));
+    dem_iqn_set_initial_relaxation(g->iqn, g->sc->coupling.initial_relaxation);
   }
   if (g->sc->coupling.interface_stiffness > 0) {
     FemContributor c = {.name = "dem interface", .eval = interface_eval, .ctx = g};
@@ -888,11 +889,17 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
     if (res <= cc->iteration_tol) {
       if (r_rel <= RESIDUAL_GUARD * cc->iteration_tol) break;
       /* a small update with a large residual: the secant model (with columns of earlier
-       * steps) predicts a fixed point the map does not have. Forget it and substitute (x~) */
+       * steps) predicts a fixed point the map does not have. Forget it and substitute (x~),
+       * relaxed by initial_relaxation as every update without a model (on a stiff bed the
+       * unrelaxed x~ threw the wall into the bed: docs/dem.md, stop 36) */
       sa_log(SA_LOG_DEBUG, "dem", "coupling iteration %d: update %.3g below the tolerance but "
              "residual %.3g: quasi-Newton model dropped", it + 1, res, r_rel);
       dem_iqn_clear(g->iqn);
-      memcpy(g->x_next, g->xw_cur, bytes);
+      double w = cc->initial_relaxation;
+      if (w == 1) /* exactly x~ (x + 1 (x~ - x) differs in the last bits) */
+        memcpy(g->x_next, g->xw_cur, bytes);
+      else
+        for (int k = 0; k < n3; k++) g->x_next[k] = g->x_try[k] + w * (g->xw_cur[k] - g->x_try[k]);
       res = INFINITY;
     }
     memcpy(g->x_try, g->x_next, bytes);

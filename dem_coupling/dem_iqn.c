@@ -13,6 +13,7 @@
 
 struct DemIqn {
   int n, max_cols, reuse, ncols, step, have_prev;
+  double w0; /* relaxation of the update without columns */
   double *V, *W;    /* columns, newest first: V[c * n], W[c * n] */
   int *col_step;    /* the step each column was made in */
   double *r_prev, *xt_prev;
@@ -26,7 +27,7 @@ int dem_iqn_create(int n, int max_cols, int reuse_steps, DemIqn **out) {
   *out = NULL;
   DemIqn *q;
   SA_CALLOC(q, 1);
-  q->n = n, q->max_cols = max_cols, q->reuse = reuse_steps;
+  q->n = n, q->max_cols = max_cols, q->reuse = reuse_steps, q->w0 = 1;
   size_t nc = (size_t)n * (size_t)max_cols;
   q->V = malloc(sizeof(double) * nc), q->W = malloc(sizeof(double) * nc);
   q->Q = malloc(sizeof(double) * nc);
@@ -53,6 +54,8 @@ void dem_iqn_destroy(DemIqn **pq) {
 }
 
 int dem_iqn_columns(const DemIqn *q) { return q ? q->ncols : 0; }
+
+void dem_iqn_set_initial_relaxation(DemIqn *q, double w) { q->w0 = w; }
 
 /* Keep the columns with keep[c] set, in their order. */
 static void compact(DemIqn *q) {
@@ -138,6 +141,10 @@ int dem_iqn_update(DemIqn *q, const double *x, const double *xt, double *x_next)
     double s = q->rhs[j];
     for (int l = j + 1; l < m; l++) s -= q->R[j * ld + l] * q->c[l];
     q->c[j] = s / q->R[j * ld + j];
+  }
+  if (m == 0 && q->w0 != 1) { /* no model: relaxed substitution (w = 1: xt itself, exactly) */
+    for (int i = 0; i < n; i++) x_next[i] = x[i] + q->w0 * (xt[i] - x[i]);
+    return 0;
   }
   memcpy(x_next, xt, sizeof(double) * (size_t)n);
   for (int j = 0; j < m; j++) {

@@ -21,6 +21,11 @@ typedef struct DemIqn DemIqn;
 /* n unknowns, at most max_cols columns, columns kept for reuse_steps earlier steps (0: only
  * the current step's). *out [owned]. */
 int dem_iqn_create(int n, int max_cols, int reuse_steps, DemIqn **out);
+/* The iterate when the model has no columns (a step's first update without reused columns,
+ * after dem_iqn_clear): x + w (xt - x) instead of plain substitution xt (w = 1, the default).
+ * w < 1 is preCICE's initial relaxation: with a map whose gain is far above 1 (a jammed bed
+ * against a soft wall) xt lies far beyond the fixed point. 0 < w <= 1. */
+void dem_iqn_set_initial_relaxation(DemIqn *q, double w);
 /* A new coupling step: the last iterate of the previous step no longer pairs with the next;
  * columns older than reuse_steps steps are dropped. */
 void dem_iqn_new_step(DemIqn *q);

@@ -94,6 +94,11 @@ static const SaParam coupling_params[] = {
      "step is rolled back and done as two half steps, each of which may be halved again; a "
      "step still not converged at the last halving stops the run if its fixed-point residual "
      "is above the guard (0 = no halving)"},
+    {"initial_relaxation", SA_PARAM_REAL, P(initial_relaxation), "-", "1", 0, 1, SA_MIN_OPEN,
+     NULL, "relaxation w of an iterated step's pass that has no quasi-Newton model (its first "
+     "pass after a checkpoint or a halving, or after the model was dropped): the next wall is "
+     "x + w (x~ - x) instead of the FEM's answer x~ (1 = plain substitution; below 1 for a "
+     "stiff bed, whose x~ lies far beyond the fixed point: docs/dem.md)"},
     {"qn_reuse", SA_PARAM_INT, P(qn_reuse), "-", "8", 0, 1000, 0, NULL,
      "coupling steps whose quasi-Newton columns are reused (the bed's response changes slowly)"},
     {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,
