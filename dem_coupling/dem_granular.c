@@ -824,8 +824,9 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
   memcpy(g->x_prev0, g->xw_prev, bytes);
   memcpy(g->f_app0, g->f_app, bytes);
   *cut = 0;
-  /* first trial: the last step's wall motion, scaled to this step's length */
-  double a = T_last > 0 ? T / T_last : 0;
+  /* first trial: the last step's wall motion, scaled to this step's length and by
+   * [coupling] extrapolation (0: the wall where it is) */
+  double a = T_last > 0 ? cc->extrapolation * T / T_last : 0;
   for (int k = 0; k < n3; k++) g->x_try[k] = g->xw_cur[k] + a * (g->xw_cur[k] - g->xw_prev[k]);
   dem_iqn_new_step(g->iqn);
   int it = 0;

@@ -94,6 +94,9 @@ static const SaParam coupling_params[] = {
      "step is rolled back and done as two half steps, each of which may be halved again; a "
      "step still not converged at the last halving stops the run if its fixed-point residual "
      "is above the guard (0 = no halving)"},
+    {"extrapolation", SA_PARAM_REAL, P(extrapolation), "-", "1", 0, 1, 0, NULL,
+     "the first wall of an iterated step is the last step's wall moved on by this fraction of "
+     "the last step's motion (scaled to the step's length; 0 = the wall where it is)"},
     {"initial_relaxation", SA_PARAM_REAL, P(initial_relaxation), "-", "1", 0, 1, SA_MIN_OPEN,
      NULL, "relaxation w of an iterated step's pass that has no quasi-Newton model (its first "
      "pass after a checkpoint or a halving, or after the model was dropped): the next wall is "

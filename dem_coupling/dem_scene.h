@@ -25,7 +25,7 @@ typedef struct {
 
 typedef struct {
   double interval, relaxation, damping, interface_stiffness, interface_tangential;
-  double iteration_tol, initial_relaxation;
+  double iteration_tol, initial_relaxation, extrapolation;
   int sample_every, wall_every, gravity, vtk_every, checkpoint_every, resume, iterations, qn_reuse;
   int cut_max; /* halvings of an iterated step that does not converge */
   int checkpoint_poured;
