@@ -858,7 +858,9 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
       m_max = fmax(m_max, sqrt(e2));
     }
     SA_CHECK(dem_iqn_update(g->iqn, g->x_try, g->xw_cur, g->x_next));
-    res = dist2(g->x_next, g->x_try, n3) / scale;
+    /* the update of a pass without a model is the residual, relaxed by initial_relaxation w:
+     * test the residual itself, else w < 1 would loosen the test by 1/w */
+    res = dem_iqn_columns(g->iqn) ? dist2(g->x_next, g->x_try, n3) / scale : r_rel;
     double ang = NAN; /* cheap (a sum over the tip face), so always: the log file is DEBUG */
     if (fem_bending_angle(g->m, g->sc->coupling.tip_surface, fem_solver_positions(g->s), &ang))
       sa_error_clear();
