@@ -42,8 +42,12 @@ typedef struct {
   double friction_wall;    /* grain-silicone [-] >= 0 */
   double friction_piston;  /* grain-piston and grain-barrel [-] >= 0 */
   double rolling_friction; /* rolling-resistance coefficient (epsd2 model) [-] >= 0 */
-  /* walls: elastic properties of the wall side of a contact (same for both wall types) */
-  double wall_young, wall_poisson; /* [Pa], [-] */
+  /* walls: elastic properties of the wall side of a contact */
+  double wall_young, wall_poisson; /* [Pa], [-]: the steel walls (DEM_WALL_STEEL), and the
+                                    * silicone wall too while silicone_young = 0 */
+  double silicone_young, silicone_poisson; /* [Pa], [-]: the silicone wall (DEM_WALL_SILICONE)
+                                    * when silicone_young > 0: a compliant wall whose grain
+                                    * contacts indent it (dem_bridge_max_indentation) */
   /* simulation */
   double dt;               /* DEM time step [s]; dem_bridge_setup refuses one above
                             * dt_safety * dem_rayleigh_dt(...) */
@@ -157,8 +161,13 @@ int dem_bridge_wall_contacts(DemBridge *b, int id, int max, int *grain, int *tri
  * their grains across runs and checkpoints). */
 int dem_bridge_particle_ids(DemBridge *b, int *id);
 /* Largest overlap over all grain-grain and grain-wall contacts, as a fraction of the grain
- * diameter [-] (grain-grain: from positions; grain-wall: from the meshes). */
+ * diameter [-] (grain-grain: from positions; grain-wall: from the meshes). A compliant silicone
+ * wall (silicone_young > 0) is left out: its contacts' overlaps are the indentation of the
+ * silicone, physical rather than a softening artefact, and measured apart (below). */
 double dem_bridge_max_overlap(DemBridge *b);
+/* Largest indentation of a grain into a compliant silicone wall found by the last
+ * dem_bridge_max_overlap, as a fraction of the grain diameter [-] (0 without such a wall). */
+double dem_bridge_max_indentation(const DemBridge *b);
 /* Where the last dem_bridge_max_overlap found its largest overlap: returns the wall mesh's
  * LIGGGHTS fix id ("mesh_<name>"), or "two grains"; pos [out] the grain's centre [m]. */
 const char *dem_bridge_overlap_site(const DemBridge *b, double pos[3]);

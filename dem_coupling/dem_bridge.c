@@ -108,6 +108,7 @@ struct DemBridge {
    * the grain's centre (the first grain of a pair) */
   int ov_mesh;
   double ov_pos[3];
+  double indent; /* largest indentation into a compliant silicone wall (fraction of d) */
   /* MPI (dem_parallel.h): ranks LIGGGHTS runs on (1: serial, the library's own MPI_Init), this
    * rank, the processor grid asked for (0: LIGGGHTS' choice), and a follower's scratch for the
    * outputs that only the lead receives */
@@ -447,6 +448,10 @@ static int params_check(const DemParams *p) {
   SA_CHECK(check_range("wall_young", p->wall_young, 0, 1, 1e13, 0, "wall Young's modulus [Pa]"));
   SA_CHECK(check_range("wall_poisson", p->wall_poisson, 0, 0, 0.5, 0,
                        "wall Poisson ratio, LIGGGHTS' range"));
+  SA_CHECK(check_range("silicone_young", p->silicone_young, 0, 0, 1e13, 0,
+                       "silicone wall's Young's modulus [Pa] (0: wall_young)"));
+  SA_CHECK(check_range("silicone_poisson", p->silicone_poisson, 0, 0, 0.5, 1,
+                       "silicone wall's Poisson ratio, LIGGGHTS' range"));
   SA_CHECK(check_range("dt_safety", p->dt_safety, 0, 1, 1, 0, "fraction of the Rayleigh step"));
   SA_CHECK(check_range("dt", p->dt, 0, 1, INFINITY, 0, "DEM time step [s]"));
   double dtr = dem_rayleigh_dt(p->diameter, p->density, p->young, p->poisson);
@@ -500,6 +505,11 @@ static int send_friction(DemBridge *b, const DemParams *p, double scale) {
   return 0;
 }
 
+/* The silicone wall's (atom type 2) Young's modulus: its own when set, else the walls'. */
+static double silicone_young(const DemParams *p) {
+  return p->silicone_young > 0 ? p->silicone_young : p->wall_young;
+}
+
 /* Commands once the box exists: materials, contact model, integrator, gravity, time step. */
 static int setup_post_box(DemBridge *b, const DemParams *p) {
   SA_CHECK(send(b, "communicate single vel yes"));
@@ -509,9 +519,10 @@ static int setup_post_box(DemBridge *b, const DemParams *p) {
   SA_CHECK(send(b, "neighbor %.17g bin", p->skin));
   SA_CHECK(send(b, "neigh_modify delay 0"));
   SA_CHECK(send(b, "fix m1 all property/global youngsModulus peratomtype %.17g %.17g %.17g", p->young,
-                p->wall_young, p->wall_young));
+                silicone_young(p), p->wall_young));
   SA_CHECK(send(b, "fix m2 all property/global poissonsRatio peratomtype %.17g %.17g %.17g",
-                p->poisson, p->wall_poisson, p->wall_poisson));
+                p->poisson, p->silicone_young > 0 ? p->silicone_poisson : p->wall_poisson,
+                p->wall_poisson));
   double e = p->restitution;
   SA_CHECK(send(b,
                 "fix m3 all property/global coefficientRestitution peratomtypepair 3 "
@@ -1185,7 +1196,7 @@ static int set_young_here(DemBridge *b, double young, double dt) {
    * material properties again at the next full set-up (test dem_stiffness_switch checks the
    * static Hertz overlap before and after) */
   SA_CHECK(send(b, "fix m1 all property/global youngsModulus peratomtype %.17g %.17g %.17g",
-                p.young, p.wall_young, p.wall_young));
+                p.young, silicone_young(&p), p.wall_young));
   SA_CHECK(send(b, "timestep %.17g", p.dt));
   b->p = p;
   b->need_setup = 1;
@@ -1337,9 +1348,12 @@ static double max_overlap_here(DemBridge *b) {
             }
           }
   }
-  /* grain-wall: the grains in the cells that a triangle's box (grown by rmax) touches */
+  /* grain-wall: the grains in the cells that a triangle's box (grown by rmax) touches; a
+   * compliant silicone wall's overlaps are its indentation, kept apart */
+  b->indent = 0;
   for (int im = 0; im < b->nmesh; im++) {
     const DemMesh *m = &b->mesh[im];
+    int compliant = m->type == DEM_WALL_SILICONE && b->p.silicone_young > 0;
     for (int t = 0; t < m->ntri; t++) {
       const double *p0 = m->xyz + 3 * m->tri[3 * t], *p1 = m->xyz + 3 * m->tri[3 * t + 1],
                    *p2 = m->xyz + 3 * m->tri[3 * t + 2];
@@ -1355,7 +1369,9 @@ static double max_overlap_here(DemBridge *b) {
               double d2 = point_tri_dist2(b->pos + 3 * j, p0, p1, p2);
               if (d2 >= rad[j] * rad[j]) continue;
               double ov = (rad[j] - sqrt(d2)) / (2 * rad[j]);
-              if (ov > worst) {
+              if (compliant) {
+                if (ov > b->indent) b->indent = ov;
+              } else if (ov > worst) {
                 worst = ov, b->ov_mesh = im;
                 memcpy(b->ov_pos, b->pos + 3 * j, sizeof b->ov_pos);
               }
@@ -1389,12 +1405,12 @@ static int write_restart_here(DemBridge *b, const char *path) {
  * One file, written atomically (temporary file in the same directory, fsync, rename), native
  * byte order (checked), little framing:
  *   offset 0  char[8]  "SADEMCKP"
- *          8  uint32   version (1)
+ *          8  uint32   version (2; 1 is read too)
  *         12  uint32   0x01020304 (byte-order mark)
  *         16  int64    LIGGGHTS time step counter
  *         24  int64    grain count
  *         32  uint64   state of the bridge's insertion generator
- *         40  DemParams, field by field (22 doubles, then int64 seed)
+ *         40  DemParams, field by field (24 doubles, 22 in version 1, then int64 seed)
  *             int32 nmesh; per mesh: char[32] name, int32 type, nverts, ntri,
  *               int32 tri[3 ntri], double xyz[3 nverts], double v[3 nverts]
  *             per grain (sorted by tag): int64 tag, int64 type, double x[3], v[3], omega[3],
@@ -1411,7 +1427,7 @@ static int write_restart_here(DemBridge *b, const char *path) {
  * byte (it aborts the process on a bad restart file). */
 
 #define CK_MAGIC "SADEMCKP"
-#define CK_VERSION 1u
+#define CK_VERSION 2u /* 2: silicone_young, silicone_poisson after skin; 1 is read (as 0, 0) */
 #define CK_BOM 0x01020304u
 #define CK_PATH_MAX 1000
 
@@ -1425,6 +1441,7 @@ static const struct {
     F(wall_young),      F(wall_poisson),  F(dt),          F(dt_safety),      F(gravity[0]),
     F(gravity[1]),      F(gravity[2]),    F(box_lo[0]),   F(box_lo[1]),      F(box_lo[2]),
     F(box_hi[0]),       F(box_hi[1]),     F(box_hi[2]),   F(skin),
+    F(silicone_young),  F(silicone_poisson), /* version 2 */
 #undef F
 };
 
@@ -1605,9 +1622,9 @@ static int ck_parse(const unsigned char *d, size_t n, const char *path, Checkpoi
   SA_REQUIRE(!memcmp(magic, CK_MAGIC, 8), SA_ERR_INPUT,
              "'%s' is not a softact DEM checkpoint (it does not start with " CK_MAGIC ")", path);
   SA_CHECK(get(&r, &version, 4, "the version"));
-  SA_REQUIRE(version == CK_VERSION, SA_ERR_INPUT,
-             "checkpoint '%s' has format version %u, this build reads version %u", path, version,
-             CK_VERSION);
+  SA_REQUIRE(version == CK_VERSION || version == 1, SA_ERR_INPUT,
+             "checkpoint '%s' has format version %u, this build reads versions 1 and %u", path,
+             version, CK_VERSION);
   SA_CHECK(get(&r, &bom, 4, "the byte-order mark"));
   SA_REQUIRE(bom == CK_BOM, SA_ERR_INPUT,
              "checkpoint '%s' was written on a machine of another byte order", path);
@@ -1638,7 +1655,9 @@ static int ck_parse(const unsigned char *d, size_t n, const char *path, Checkpoi
   CK_TRY(get(&r, &ck->step, 8, "the time step counter"));
   CK_TRY(get(&r, &ck->count, 8, "the grain count"));
   CK_TRY(get(&r, &ck->rng, 8, "the generator state"));
-  for (size_t k = 0; k < sizeof ck_fields / sizeof *ck_fields; k++)
+  /* version 1 ends before the silicone wall's two fields (a rigid-contact run: 0, 0) */
+  size_t nfields = sizeof ck_fields / sizeof *ck_fields - (version == 1 ? 2 : 0);
+  for (size_t k = 0; k < nfields; k++)
     CK_TRY(get(&r, (char *)&ck->p + ck_fields[k].off, 8, "the parameters"));
   int64_t seed = 0;
   CK_TRY(get(&r, &seed, 8, "the parameters"));
@@ -2416,6 +2435,8 @@ double dem_bridge_max_overlap(DemBridge *b) {
   if (leads(b)) lead_call(OP_OVERLAP, 0, NULL, 0, NULL, NULL, 0, NULL, 0, NULL, 0);
   return max_overlap_here(b);
 }
+
+double dem_bridge_max_indentation(const DemBridge *b) { return b ? b->indent : 0; }
 
 int dem_bridge_write_restart(DemBridge *b, const char *path) {
   if (leads(b)) lead_call(OP_WRITE_RESTART, 0, NULL, 0, NULL, path, slen(path), NULL, 0, NULL, 0);

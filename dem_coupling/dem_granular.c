@@ -30,6 +30,7 @@
 #include "dem_scene.h"
 #include "fem_contrib.h"
 #include "fem_coupling.h"
+#include "fem_material.h"
 #include "sa_csv.h"
 #include "sa_error.h"
 #include "sa_log.h"
@@ -82,6 +83,9 @@ typedef struct {
   /* coupling step averages */
   double F_mesh[N_MESH][3];
   double angle, piston_force, overlap, balance, phi, phi0, V_bed0, wall_fz, barrel_fz;
+  double indent;            /* largest bead indentation into the silicone wall (fraction of d;
+                             * [grains] wall_contact = silicone) */
+  double E_sil, nu_sil;     /* the silicone's small-strain Young's modulus and Poisson ratio */
   double inertial, inertial_max; /* inertial number of the bed (now, largest in the stroke) */
   double v_piston, T_step;       /* piston speed at the end of the step, step duration */
   double p_start[3];             /* the bed's momentum at the start of the step */
@@ -106,7 +110,7 @@ typedef struct {
   int nrows, cap_rows, cap_vtk;
 } Run;
 
-#define N_COLS 14
+#define N_COLS 15
 
 /* ------------------------------------------------------------------ FEM side */
 
@@ -169,6 +173,26 @@ static void interface_update(Run *g) {
   memcpy(g->a_if, g->xw_cur, sizeof(double) * 3 * (size_t)g->nv);
 }
 
+/* [grains] wall_contact = silicone: the silicone's small-strain Young's modulus and Poisson
+ * ratio from its law's initial shear modulus mu0 and bulk modulus K (E = 9 K mu0 / (3 K + mu0),
+ * nu = (3 K - 2 mu0) / (2 (3 K + mu0)); the reference silicone: 0.66 MPa, 0.499), for the
+ * wall's side of a bead's Hertz contact in LIGGGHTS. */
+static int silicone_contact_moduli(Run *g) {
+  int r = -1;
+  for (int k = 0; k < g->m->nregions; k++)
+    if (!strcmp(g->m->region_names[k], "silicone")) r = k;
+  SA_REQUIRE(r >= 0, SA_ERR_INPUT, "[grains] wall_contact = silicone: the mesh has no region "
+             "named 'silicone' to take the wall's modulus from");
+  double mu = fem_material_mu0(&g->mats[r]), K = g->mats[r].kappa;
+  SA_REQUIRE(mu > 0 && K > 0, SA_ERR_INPUT, "[grains] wall_contact = silicone: the silicone "
+             "law has no initial shear and bulk moduli (mu0 = %g, K = %g Pa)", mu, K);
+  g->E_sil = 9 * K * mu / (3 * K + mu);
+  g->nu_sil = (3 * K - 2 * mu) / (2 * (3 * K + mu));
+  sa_log(SA_LOG_INFO, "dem", "bead-silicone contacts: the wall's side is the silicone (E = %.4g "
+         "MPa, nu = %.4f)", g->E_sil * 1e-6, g->nu_sil);
+  return 0;
+}
+
 static int setup_fem(Run *g) {
   const DemScene *sc = g->sc;
   const DemCouplingCase *cc = &sc->coupling;
@@ -178,6 +202,7 @@ static int setup_fem(Run *g) {
   g->mats = calloc((size_t)(g->m->nregions > 0 ? g->m->nregions : 1), sizeof *g->mats);
   SA_REQUIRE(g->mats, SA_ERR_MEMORY, "materials");
   SA_CHECK(fem_actuator_materials(&sc->act, g->m, g->mats));
+  if (!strcmp(sc->grains.wall_contact, "silicone")) SA_CHECK(silicone_contact_moduli(g));
   FemSolverParams prm = fem_actuator_solver_params(&sc->act, g->run->threads);
   prm.mass_damping = cc->damping;
   SA_CHECK(fem_solver_create(g->m, g->mats, &prm, &g->s));
@@ -299,6 +324,7 @@ static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z
       .restitution = gr->restitution, .friction = gr->friction,
       .friction_wall = gr->friction_wall, .friction_piston = gr->friction_piston,
       .rolling_friction = gr->rolling_friction, .wall_young = E, .wall_poisson = gr->poisson,
+      .silicone_young = g->E_sil, .silicone_poisson = g->nu_sil,
       .dt = g->dt, .dt_safety = 0.35, .gravity = {0, 0, sc->coupling.gravity ? -G_ACC : 0},
       .skin = (resume ? sc->dem.skin : sc->dem.pour_skin) * g->d, .seed = sc->dem.seed};
   /* the pour column: the bed volume at a loose 0.3 packing above the barrel top */
@@ -876,7 +902,14 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
      * quasi-Newton trial put a floor node ~100 um inside a grain at an rms residual of 0.23,
      * docs/dem.md "stop 30"). The FEM's answer x~ has felt that push: substitute it. */
     double t_ov = sa_time_now(), ov = dem_bridge_max_overlap(g->b);
+    double ind = dem_bridge_max_indentation(g->b);
     g->t_checks += sa_time_now() - t_ov;
+    if (!(ind <= g->sc->dem.max_indentation)) { /* the same rule for the silicone's indentation */
+      sa_log(SA_LOG_INFO, "dem", "coupling iteration %d: a bead indents the silicone wall by "
+             "%.3g of its diameter, above [dem] max_indentation = %g: not accepted, the FEM's "
+             "wall is tried next", it + 1, ind, g->sc->dem.max_indentation);
+      ov = INFINITY;
+    }
     if (!(ov <= g->sc->dem.max_overlap)) {
       double at[3];
       const char *with = dem_bridge_overlap_site(g->b, at);
@@ -1020,6 +1053,15 @@ static int step_checks(Run *g, int step, double s_disp, int full) {
   const char *ov_with = dem_bridge_overlap_site(g->b, ov_at);
   sa_log(SA_LOG_DEBUG, "dem", "largest overlap %.4g of the diameter (%s, grain at (%.2f, %.2f, "
          "%.2f) mm)", g->overlap, ov_with, ov_at[0] * 1e3, ov_at[1] * 1e3, ov_at[2] * 1e3);
+  g->indent = dem_bridge_max_indentation(g->b);
+  if (g->E_sil > 0)
+    sa_log(SA_LOG_DEBUG, "dem", "largest indentation of the silicone wall %.4g of the diameter",
+           g->indent);
+  SA_REQUIRE(isfinite(g->indent) && g->indent <= sc->dem.max_indentation, SA_ERR_DOMAIN,
+             "a bead indents the silicone wall by %.3g of its diameter, above [dem] "
+             "max_indentation = %g, at piston displacement %.3f mm: Hertz's law is out of its "
+             "range and the bead near tunnelling through the wall (refine the wall mesh, or "
+             "a shorter stroke)", g->indent, sc->dem.max_indentation, s_disp * 1e3);
   SA_REQUIRE(isfinite(g->overlap) && g->overlap <= sc->dem.max_overlap, SA_ERR_DOMAIN,
              "largest contact overlap %.3g of the diameter exceeds [dem] max_overlap = %g at "
              "piston displacement %.3f mm (%s, grain at (%.2f, %.2f, %.2f) mm): the grains are "
@@ -1139,9 +1181,9 @@ static int open_outputs(Run *g) {
                                 "displaced_volume", "volume_change_rel", "cavity_volume_change",
                                 "packing_fraction", "wall_force_z", "barrel_force_z",
                                 "max_overlap", "force_balance_error", "newton_iterations",
-                                "time", "inertial_number"};
+                                "time", "inertial_number", "max_indentation"};
   static const char *units[] = {"m", "deg", "N", "m^3", "-", "m^3", "-", "N", "N", "-", "-", "-",
-                                "s", "-"};
+                                "s", "-", "-"};
   char path[SA_STR_MAX];
   SA_CHECK(sa_run_path(g->run, "bending.csv", path));
   SA_CHECK(sa_csv_open(path, N_COLS, names, units, &g->csv));
@@ -1179,7 +1221,7 @@ static int output_row(Run *g, double s_disp, double time) {
   if (fabs(g->piston_force) >= 1.0) g->inertial_max = fmax(g->inertial_max, g->inertial);
   double row[N_COLS] = {s_disp, ang, g->piston_force, Vd, V / g->V0 - 1, V - g->V0, g->phi,
                         g->wall_fz, g->barrel_fz, g->overlap, g->balance, g->newton, time,
-                        g->inertial};
+                        g->inertial, g->indent};
   SA_CHECK(keep_row(g, row));
   return sa_csv_row(g->csv, row);
 }
@@ -1241,14 +1283,17 @@ static int write_summary(Run *g, double s_reached, const char *status, double wa
           "status = %s\npiston_displacement = %.9g ; m\nbending_angle = %.6f ; deg\n"
           "piston_force = %.6g ; N\nvolume_change_rel = %.6g\npacking_fraction_initial = %.5f\n"
           "packing_fraction_final = %.5f\nmax_overlap = %.5g ; of the diameter\n"
+          "max_indentation = %.5g ; of the diameter, into the silicone wall (wall_contact = "
+          "silicone)\n"
           "force_balance_error = %.4g\ngrains = %d\ninertial_number = %.4g\n"
           "inertial_number_max = %.4g ; largest once the piston force passed 1 N\n",
           status, s_reached, g->angle, g->piston_force,
-          vol_rel, g->phi0, g->phi, g->overlap, g->balance,
+          vol_rel, g->phi0, g->phi, g->overlap, g->indent, g->balance,
           g->n_grains, g->inertial, g->inertial_max);
   fprintf(fp, "\n[dem]\ntime_step = %.6g ; s\nyoung_used = %.6g ; Pa\nmpi_ranks = %d ; LIGGGHTS' "
-          "domains (mpirun -np)\n", g->dt, g->sc->grains.young / g->sc->grains.softening,
-          dem_par_size());
+          "domains (mpirun -np)\nsilicone_contact_young = %.6g ; Pa (0: the grains' modulus)\n",
+          g->dt, g->sc->grains.young / g->sc->grains.softening,
+          dem_par_size(), g->E_sil);
   fprintf(fp, "\n[timing]\nwall = %.3f ; s\n"
           "cpu = %.3f ; s (this process, user + system, all threads)\n"
           "dem = %.3f ; s\nexchange = %.3f ; s\nfem = %.3f ; s\n"
@@ -1354,8 +1399,9 @@ static int read_checkpoint(Run *g, char *dem_path, double **xw_wall) {
                ? 0
                : SA_ERROR(SA_ERR_INPUT, "%s is not a softact FEM-DEM checkpoint", st);
   if (!rc && (h.nv != g->nv || h.ncols != N_COLS || h.nrows < 0 || h.nvtk < 0))
-    rc = SA_ERROR(SA_ERR_INPUT, "%s belongs to another model (%d wall vertices, this case has %d)",
-                  st, (int)h.nv, g->nv);
+    rc = SA_ERROR(SA_ERR_INPUT, "%s belongs to another model or build (%d wall vertices and %d "
+                  "CSV columns; this case has %d, this build writes %d)", st, (int)h.nv,
+                  (int)h.ncols, g->nv, N_COLS);
   if (!rc) rc = fem_solver_read_state(g->s, fp, st);
   size_t v3 = 3 * (size_t)g->nv;
   double *xw = NULL;

@@ -37,6 +37,13 @@ static const SaParam grain_params[] = {
      "bead-piston and bead-barrel friction coefficient"},
     {"rolling_friction", SA_PARAM_REAL, P(rolling_friction), "-", "0.02", 0, 1, 0, NULL,
      "rolling-resistance coefficient (epsd2 model)"},
+    {"wall_contact", SA_PARAM_CHOICE, P(wall_contact), "-", "silicone", 0, 0, 0,
+     "silicone|grain",
+     "elastic side of the silicone wall in a bead's Hertz contact: silicone = the silicone's "
+     "small-strain modulus and Poisson ratio from [material] (a bead indents the wall as glass "
+     "does rubber; checked by [dem] max_indentation), grain = the beads' own softened modulus "
+     "(a near-rigid contact, all of the wall's compliance the FEM's: the coupling's map then "
+     "has a large gain and stiff beds break it down; docs/dem.md)"},
     {"softening", SA_PARAM_REAL, P(softening), "-", "1000", 1, 1e6, 0, NULL,
      "the DEM contact stiffness uses young / softening (larger time step); effect in docs/dem.md"},
     {"fill_height", SA_PARAM_REAL, P(fill_height), "m", "0.03", 0, 1, SA_MIN_OPEN, NULL,
@@ -164,7 +171,14 @@ static const SaParam dem_params[] = {
     {"settle_time_max", SA_PARAM_REAL, P(settle_time_max), "s", "1.5", 0, INFINITY, SA_MIN_OPEN,
      NULL, "give up settling after this much simulated time"},
     {"max_overlap", SA_PARAM_REAL, P(max_overlap), "-", "0.05", 0, 0.5, SA_MIN_OPEN, NULL,
-     "stop when a contact overlap exceeds this fraction of the diameter (soften less)"},
+     "stop when a contact overlap exceeds this fraction of the diameter (soften less); with "
+     "[grains] wall_contact = silicone the silicone wall's contacts are checked by "
+     "max_indentation instead"},
+    {"max_indentation", SA_PARAM_REAL, P(max_indentation), "-", "0.4", 0, 0.5, SA_MIN_OPEN,
+     NULL, "with [grains] wall_contact = silicone: stop when a bead indents the silicone wall "
+     "by more than this fraction of its diameter (at 0.5 its centre reaches the wall's facet "
+     "and it can tunnel; Hertz's law itself assumes indentations small against the radius: "
+     "bending.csv reports the largest, docs/dem.md)"},
     {"balance_tol", SA_PARAM_REAL, P(balance_tol), "-", "0.1", 0, 10, SA_MIN_OPEN, NULL,
      "stop when the grains' force balance misses by more than this fraction of the load"},
     {"seed", SA_PARAM_INT, P(seed), "-", "15485863", 10001, 2147483647, 0, NULL,

@@ -16,6 +16,7 @@
 typedef struct {
   double diameter, density, young, poisson, restitution, friction, friction_wall,
       friction_piston, rolling_friction, softening, fill_height, packing_guess;
+  char wall_contact[SA_STR_MAX]; /* grain | silicone: the silicone wall's side of a contact */
 } DemGrainCase;
 
 typedef struct {
@@ -34,7 +35,8 @@ typedef struct {
 } DemCouplingCase;
 
 typedef struct {
-  double dt_fraction, skin, settle_speed, max_overlap, balance_tol, settle_time_max;
+  double dt_fraction, skin, settle_speed, max_overlap, max_indentation, balance_tol,
+      settle_time_max;
   double pour_softening, pour_speed, pour_friction, pour_skin;
   int seed, check_every, mpi_ranks;
 } DemNumericsCase;

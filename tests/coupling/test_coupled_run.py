@@ -65,12 +65,25 @@ with tempfile.TemporaryDirectory() as tmp:
     fails = []
     if summ.get("status") != "completed":
         fails.append(f"status {summ.get('status')}")
+    # the wall's side of a bead contact: the silicone's small-strain Young's modulus from the
+    # case's Yeoh law (mu0 = 2 c10, K = kappa_ratio mu0: E = 9 K mu0 / (3 K + mu0))
+    mu0 = 2 * 0.11e6
+    E_sil = 9 * 500 * mu0 * mu0 / (3 * 500 * mu0 + mu0)
+    if abs(float(summ.get("silicone_contact_young", 0)) / E_sil - 1) > 1e-5:
+        fails.append(f"silicone contact modulus {summ.get('silicone_contact_young')} Pa, "
+                     f"expected {E_sil:.6g}")
+    if float(rows[-1]["max_indentation"]) <= 0:
+        fails.append("the loaded bed does not indent the silicone wall")
     n = int(summ["grains"])
     W = n * math.pi * 3e-3 ** 3 / 6 * 2500 * 9.81
     fails += balance_fails(rows, W, "")
     for row in rows:
         if float(row["max_overlap"]) >= 0.05:
             fails.append(f"overlap {row['max_overlap']}")
+        # the beads indent the silicone wall (the scene's wall_contact = silicone), less than
+        # the run check's limit ([dem] max_indentation 0.4 of d)
+        if not 0 <= float(row["max_indentation"]) <= 0.4:
+            fails.append(f"indentation {row['max_indentation']}")
         phi = float(row["packing_fraction"])
         if not 0.45 <= phi <= 0.64:
             fails.append(f"packing fraction {phi}")

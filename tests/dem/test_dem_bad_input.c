@@ -53,6 +53,8 @@ int main(void) {
       {"wall_poisson", offsetof(DemParams, wall_poisson), -0.1},
       {"young", offsetof(DemParams, young), 0},
       {"wall_young", offsetof(DemParams, wall_young), -5},
+      {"silicone_young", offsetof(DemParams, silicone_young), -1},
+      {"silicone_poisson", offsetof(DemParams, silicone_poisson), 0.5},
       {"density", offsetof(DemParams, density), NAN},
       {"diameter", offsetof(DemParams, diameter), -1e-3},
       {"dt_safety", offsetof(DemParams, dt_safety), 1.5},

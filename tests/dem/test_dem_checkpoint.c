@@ -366,6 +366,10 @@ static int child(const char *ck, const char *out) {
   q.diameter = 2.9e-3;
   expect("another grain diameter", dem_bridge_setup_from_checkpoint(b, &q, ck, NGRAIN),
          SA_ERR_INPUT, ck, "diameter");
+  q = p; /* the silicone wall's moduli (format version 2) are part of the parameters too */
+  q.silicone_young = 1e6;
+  expect("a compliant silicone wall", dem_bridge_setup_from_checkpoint(b, &q, ck, NGRAIN),
+         SA_ERR_INPUT, ck, "silicone_young");
   expect("another grain count", dem_bridge_setup_from_checkpoint(b, &p, ck, NGRAIN - 1),
          SA_ERR_INPUT, ck, "grains");
   DemCheckpointInfo info;
