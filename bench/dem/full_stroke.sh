@@ -5,7 +5,9 @@
 # interval, iterated coupling, two MPI ranks. Hours of run time: the run writes a checkpoint
 # every CKPT coupling steps and this script, run again with the same OUT, resumes an
 # interrupted run (same result as a run that was never stopped). Results: OUT/bending.csv, summary.ini, plots.
-#   bench/dem/full_stroke.sh OUT [SOFTENING=30] [STROKE_M=0.025] [CKPT=4]
+#   bench/dem/full_stroke.sh OUT [SOFTENING=30] [STROKE_M=0.025] [CKPT=4] [KEY=VALUE...]
+# (each KEY=VALUE after the fourth argument is passed on as --set KEY=VALUE, e.g.
+# grains.wall_contact=grain for the old near-rigid bead-silicone contact)
 # EXE and SOFTACT_DEM_PLUGIN may point at copies of the binaries (a rebuild of build/ must not
 # swap the DEM plugin under a running study).
 set -eu
@@ -13,6 +15,9 @@ OUT=$1
 SOFT=${2:-30}
 S=${3:-0.025}
 CKPT=${4:-4}
+if [ $# -gt 4 ]; then shift 4; else shift $#; fi
+SETS=""
+for kv in "$@"; do SETS="$SETS --set $kv"; done
 EXE=${EXE:-build/apps/softact}
 RESUME=""
 if [ -f "$OUT/checkpoint/state.ckpt" ]; then
@@ -25,4 +30,4 @@ fi
 # shellcheck disable=SC2086
 "$EXE" run cases/granular_bending_dem.ini --out "$OUT" --set grains.softening="$SOFT" \
   --set piston.stroke="$S" --set coupling.checkpoint_every="$CKPT" --set coupling.vtk_every=4 \
-  $RESUME
+  $SETS $RESUME
