@@ -1410,7 +1410,7 @@ static int write_restart_here(DemBridge *b, const char *path) {
  *         16  int64    LIGGGHTS time step counter
  *         24  int64    grain count
  *         32  uint64   state of the bridge's insertion generator
- *         40  DemParams, field by field (24 doubles, 22 in version 1, then int64 seed)
+ *         40  DemParams, field by field (25 doubles, 23 in version 1, then int64 seed)
  *             int32 nmesh; per mesh: char[32] name, int32 type, nverts, ntri,
  *               int32 tri[3 ntri], double xyz[3 nverts], double v[3 nverts]
  *             per grain (sorted by tag): int64 tag, int64 type, double x[3], v[3], omega[3],

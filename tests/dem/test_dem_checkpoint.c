@@ -370,6 +370,30 @@ static int child(const char *ck, const char *out) {
   q.silicone_young = 1e6;
   expect("a compliant silicone wall", dem_bridge_setup_from_checkpoint(b, &q, ck, NGRAIN),
          SA_ERR_INPUT, ck, "silicone_young");
+  /* a version-1 file (before the silicone wall's two moduli): the same bytes without the 16 at
+   * offset 224 (after 23 doubles of parameters from offset 40), version 1, its FNV-1a hash of
+   * every byte before it redone here (Fowler-Noll-Vo, 64 bit). It reads as a near-rigid
+   * silicone wall (0, 0): the info passes, a compliant wall's parameters are refused */
+  unsigned char *v1 = malloc(n0);
+  size_t nv1 = n0 - 16;
+  memcpy(v1, orig, 224);
+  memcpy(v1 + 224, orig + 240, n0 - 240);
+  uint32_t one = 1;
+  memcpy(v1 + 8, &one, 4);
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i < nv1 - 8; i++) h = (h ^ v1[i]) * 0x100000001b3ull;
+  memcpy(v1 + nv1 - 8, &h, 8);
+  snprintf(bad, sizeof bad, "%s.v1", ck);
+  spill(bad, v1, nv1);
+  DemCheckpointInfo i1;
+  int rc1 = dem_bridge_checkpoint_info(bad, &i1);
+  if (rc1) printf("version 1: %s\n", sa_error_message());
+  t_true("a version-1 checkpoint is read (step, count, meshes)",
+         rc1 == 0 && i1.step == NCK && i1.count == NGRAIN && i1.nmesh == 3);
+  expect("a compliant silicone wall against a version-1 file",
+         dem_bridge_setup_from_checkpoint(b, &q, bad, NGRAIN), SA_ERR_INPUT, bad, "silicone_young");
+  remove(bad);
+  free(v1);
   expect("another grain count", dem_bridge_setup_from_checkpoint(b, &p, ck, NGRAIN - 1),
          SA_ERR_INPUT, ck, "grains");
   DemCheckpointInfo info;
