@@ -902,21 +902,21 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
      * quasi-Newton trial put a floor node ~100 um inside a grain at an rms residual of 0.23,
      * docs/dem.md "stop 30"). The FEM's answer x~ has felt that push: substitute it. */
     double t_ov = sa_time_now(), ov = dem_bridge_max_overlap(g->b);
-    double ind = dem_bridge_max_indentation(g->b);
+    double ind = dem_bridge_max_indentation(g->b); /* the same rule for the silicone's */
     g->t_checks += sa_time_now() - t_ov;
-    if (!(ind <= g->sc->dem.max_indentation)) { /* the same rule for the silicone's indentation */
-      sa_log(SA_LOG_INFO, "dem", "coupling iteration %d: a bead indents the silicone wall by "
-             "%.3g of its diameter, above [dem] max_indentation = %g: not accepted, the FEM's "
-             "wall is tried next", it + 1, ind, g->sc->dem.max_indentation);
-      ov = INFINITY;
-    }
-    if (!(ov <= g->sc->dem.max_overlap)) {
+    int deep = !(ind <= g->sc->dem.max_indentation);
+    if (deep || !(ov <= g->sc->dem.max_overlap)) {
       double at[3];
       const char *with = dem_bridge_overlap_site(g->b, at);
-      sa_log(SA_LOG_INFO, "dem", "coupling iteration %d: overlap %.3g of the diameter (%s, "
-             "grain at (%.2f, %.2f, %.2f) mm) above [dem] max_overlap = %g: not accepted, the "
-             "FEM's wall is tried next", it + 1, ov, with, at[0] * 1e3, at[1] * 1e3,
-             at[2] * 1e3, g->sc->dem.max_overlap);
+      if (deep)
+        sa_log(SA_LOG_INFO, "dem", "coupling iteration %d: a bead indents the silicone wall by "
+               "%.3g of its diameter, above [dem] max_indentation = %g: not accepted, the FEM's "
+               "wall is tried next", it + 1, ind, g->sc->dem.max_indentation);
+      else
+        sa_log(SA_LOG_INFO, "dem", "coupling iteration %d: overlap %.3g of the diameter (%s, "
+               "grain at (%.2f, %.2f, %.2f) mm) above [dem] max_overlap = %g: not accepted, the "
+               "FEM's wall is tried next", it + 1, ov, with, at[0] * 1e3, at[1] * 1e3,
+               at[2] * 1e3, g->sc->dem.max_overlap);
       dem_iqn_clear(g->iqn);
       memcpy(g->x_try, g->xw_cur, bytes);
       g->it_overlap++;
@@ -1310,7 +1310,8 @@ static int write_summary(Run *g, double s_reached, const char *status, double wa
             "fixed_point_residual_max = %.4g ; |x~ - x| of an accepted step / the grains' wall "
             "displacement\nunconverged_steps = %d\n"
             "halved_steps = %d ; steps (or parts) redone as two halves, not converged\n"
-            "overlap_rejected_passes = %d ; passes not accepted: an overlap above [dem] max_overlap\n"
+            "overlap_rejected_passes = %d ; passes not accepted: an overlap above [dem] max_overlap "
+            "or an indentation above max_indentation\n"
             "rollback = %.3f ; s (DEM checkpoints, reloads and FEM snapshots)\n", g->it_steps,
             g->it_steps ? (double)g->it_sum / g->it_steps : 0.0, g->it_max, g->it_res,
             g->it_res_max, g->it_fp_max, g->it_unconverged, g->it_cuts, g->it_overlap,
