@@ -908,6 +908,15 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
     if (deep || !(ov <= g->sc->dem.max_overlap)) {
       double at[3];
       const char *with = dem_bridge_overlap_site(g->b, at);
+      /* two grains two diameters above the silicone's top (z = 0) touch only grains and the
+       * rigid barrel: no wall position cures their overlap, so passes and halvings would only
+       * repeat it (a softening-100 bed at 5 mm spent 15 passes on one barrel contact) */
+      SA_REQUIRE(deep || !(at[2] > 2 * g->d) || strcmp(with, "two grains") != 0, SA_ERR_DOMAIN,
+                 "largest contact overlap %.3g of the diameter exceeds [dem] max_overlap = %g "
+                 "(%s, grain at (%.2f, %.2f, %.2f) mm, in the rigid barrel, where no position of "
+                 "the silicone wall changes it): the grains are too soft for this load (lower "
+                 "[grains] softening) or the piston too fast", ov, g->sc->dem.max_overlap, with,
+                 at[0] * 1e3, at[1] * 1e3, at[2] * 1e3);
       if (deep)
         sa_log(SA_LOG_INFO, "dem", "coupling iteration %d: a bead indents the silicone wall by "
                "%.3g of its diameter, above [dem] max_indentation = %g: not accepted, the FEM's "
