@@ -30,6 +30,7 @@ TABLE = [
     ("dem_unsafe_time_step", "[grains]\n[dem]\ndt_fraction = 0.5\n", [], [":3:", "dt_fraction", "expected a real number in"]),
     ("dem_beads_larger_than_bore", "[grains]\ndiameter = 6e-3\n", [], ["diameter", "smaller than the bore radius"]),
     ("dem_stroke_longer_than_barrel", "[grains]\n[piston]\nstroke = 0.035\n", [], ["stroke", "longer than the barrel"]),
+    ("dem_rest_window_rigid_contact", "[grains]\nwall_contact = grain\n[coupling]\nwall_every_rest = 10\n", [], ["wall_every_rest = 10", "wall_contact", "allowed: 1"]),
     ("dem_negative_friction", "[grains]\nfriction_wall = -0.1\n", [], [":2:", "friction_wall", "expected a real number in"]),
 ]
 
