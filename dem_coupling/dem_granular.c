@@ -589,7 +589,7 @@ static int dem_step(Run *g, double z0, double v0, double v1, double T) {
   /* with the piston at rest the bed carries only its weight: with the near-rigid wall contact
    * its grain-wall overlaps are ~0.2 um, the size of a 10-step jump of the settling wall, so
    * there the wall moves every step (docs/dem.md, "Session 2026-12-06"); the silicone's
-   * contact has ~9 um overlaps at that load, so it may use wall_every_rest > 1 (stop 38) */
+   * contact has ~10 um overlaps at that load, so it may use wall_every_rest > 1 (stop 38) */
   int chunk = cc->sample_every, nsamp = 0;
   int wall_every = v0 > 0 || v1 > 0 ? cc->wall_every : cc->wall_every_rest;
   /* several MPI ranks: the forces are summed on each rank over the step and gathered at its

@@ -123,8 +123,9 @@ static const SaParam coupling_params[] = {
      "with the piston at rest see wall_every_rest: docs/dem.md)"},
     {"wall_every_rest", SA_PARAM_INT, P(wall_every_rest), "-", "1", 1, 100000, 0, NULL,
      "the same while the piston is at rest (the preload under the bed's weight): 1 = every "
-     "step; above 1 only with [grains] wall_contact = silicone, whose resting overlaps (~9 um) "
-     "dwarf a window's wall jump (the near-rigid contact's ~0.2 um do not: docs/dem.md)"},
+     "step; above 1 only with [grains] wall_contact = silicone, whose resting overlaps (~10 um, "
+     "the deepest 85 um on the scene's bed) dwarf a window's wall jump (the near-rigid "
+     "contact's ~0.2 um do not: docs/dem.md)"},
     {"gravity", SA_PARAM_BOOL, P(gravity), "-", "1", 0, 0, 0, NULL,
      "gravity (-z, 9.81 m/s^2) on grains and silicone"},
     {"checkpoint_every", SA_PARAM_INT, P(checkpoint_every), "-", "20", 0, 100000, 0, NULL,
