@@ -5,7 +5,8 @@
 # size of a window's jump); with the silicone's contact they are ~10 um. Four runs of the
 # default scene from the same pour (one rank each, two at a time: the pour is the same bed
 # bit for bit within one rank count): wall_every_rest = 1 and 10, each also perturbed at
-# tolerance level (solver.rtol 0.9e-6) for the chaos floor of one bed.
+# tolerance level (solver.rtol 0.9e-6) for the chaos floor of one bed. One FEM thread each: two
+# runs share the 2 cores, and two-thread FEMs beside another job stall each other.
 #   bench/dem/wall_every_rest_study.sh OUT [STROKE_M]
 set -eu
 OUT=$1
@@ -20,7 +21,7 @@ one() { # LABEL key=value ...
   for kv in "$@"; do sets="$sets --set $kv"; done
   # shellcheck disable=SC2086
   "$EXE" run $CASE --out "$OUT/$label" --set piston.stroke="$S" --set dem.mpi_ranks=1 \
-    --set coupling.vtk_every=0 $sets > "$OUT/$label.log" 2>&1 || true
+    --set coupling.vtk_every=0 --set run.threads=1 $sets > "$OUT/$label.log" 2>&1 || true
 }
 one rest1 coupling.wall_every_rest=1 &
 one rest10 coupling.wall_every_rest=10
