@@ -8,9 +8,10 @@ R=bench/fem/results_rings
 A="previous recipe (5592fe2), h then all sizes refined"
 B="new recipe, rings refined at h 2 mm"
 C="new recipe, 4/2/1 ring zone 1 mm"
-python3 bench/fem/work_precision.py --ref 16.9775,37.0262,60.1894,86.9179 \
+python3 bench/fem/work_precision.py --ref 16.82,36.66,59.32,84.20 \
   --out docs/img/fem_work_precision --time cpu \
   "$A:4/2/2=$R/prev_4_2_2.out" "$A:3/2/2=$R/prev_3_2_2.out" "$A:2/2/2=$R/prev_2_2_2.out" \
   "$A:1.5/1.5/1.5=$R/prev_1.5_1.5_1.5.out" "$A:1.25/1.25/1.25=$R/prev_1.25_1.25_1.25.out" \
   "$B:4/2/2=$R/new_4_2_2.out" "$B:2/2/1=$R/new_2_2_1.out" "$B:2/2/0.5=$R/new_2_2_0.5.out" \
+  "$B:2/2/0.25=$R/new_2_2_0.25.out" \
   "$C:4/2/1=$R/new_4_2_1_tg1.out"
