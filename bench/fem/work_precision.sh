@@ -14,4 +14,5 @@ python3 bench/fem/work_precision.py --ref 16.82,36.66,59.32,84.20 \
   "$A:1.5/1.5/1.5=$R/prev_1.5_1.5_1.5.out" "$A:1.25/1.25/1.25=$R/prev_1.25_1.25_1.25.out" \
   "$B:4/2/2=$R/new_4_2_2.out" "$B:2/2/1=$R/new_2_2_1.out" "$B:2/2/0.5=$R/new_2_2_0.5.out" \
   "$B:2/2/0.25=$R/new_2_2_0.25.out" \
-  "$C:4/2/1=$R/new_4_2_1_tg1.out"
+  "$C:4/2/1=$R/new_4_2_1_tg1.out" \
+  "CalculiX C3D10 (locks), same mesh:4/2/2=$R/ccx/c3d10_4_2_2.out"

@@ -17,7 +17,7 @@
  *
  * usage: ccx_hex actuator --h H --out BASE [--hr HR (radial size, default H)] [--rings 0|1] [--kappa-ratio R] [--pressure P]
  *                [--c10 ..] [--c20 ..] [--c30 ..] [--inc0 F] [--incmin F] [--incmax F]
- *                [--etype C3D20R|C3D20]
+ *                [--etype C3D20R|C3D20] [--time-points T1,T2,... (print times, as ccx_export)]
  *        ccx_hex box --lx L --ly L --lz L --nx N --ny N --nz N --out BASE [material, step] */
 #include <math.h>
 #include <stdint.h>
@@ -487,6 +487,7 @@ static int run(int argc, char **argv)
     else if (OPT("--ny")) N[1] = atoi(v);
     else if (OPT("--nz")) N[2] = atoi(v);
     else if (!strcmp(a, "--print-all")) m.print_all = 1;
+    else if (OPT("--time-points")) SA_CHECK(ccx_model_set_time_points(&m, v));
     else return SA_ERROR(SA_ERR_INPUT, "unknown or incomplete option %s", a);
 #undef OPT
   }

@@ -33,6 +33,24 @@ int ccx_model_add_bc(CcxModel *m, const char *name, int first, int last, int n, 
   return 0;
 }
 
+int ccx_model_set_time_points(CcxModel *m, const char *list)
+{
+  int n = 0;
+  for (const char *p = list; *p;) {
+    char *end;
+    double t = strtod(p, &end);
+    SA_REQUIRE(end != p && (*end == ',' || !*end), SA_ERR_INPUT, "bad time-point list %s", list);
+    SA_REQUIRE(n < CCX_MAX_TIME_POINTS, SA_ERR_INPUT, "more than %d time points", CCX_MAX_TIME_POINTS);
+    SA_REQUIRE(t > 0 && t <= 1 && (!n || t > m->time_points[n - 1]), SA_ERR_INPUT,
+               "time points must ascend within (0, 1]: %s", list);
+    m->time_points[n++] = t;
+    p = *end ? end + 1 : end;
+  }
+  SA_REQUIRE(n > 0, SA_ERR_INPUT, "empty time-point list");
+  m->ntime_points = n;
+  return 0;
+}
+
 void ccx_model_free(CcxModel *m)
 {
   free(m->xyz);
@@ -103,6 +121,11 @@ static int write_inp(const CcxModel *m, FILE *f)
     fprintf(f, "*SOLID SECTION, ELSET=E_%s, MATERIAL=M_%s\n", g->name, g->name);
   }
   fprintf(f, "*AMPLITUDE, NAME=RAMP\n0., 0., 1., 1.\n");
+  if (m->ntime_points) {
+    fprintf(f, "*TIME POINTS, NAME=TP\n");
+    for (int i = 0; i < m->ntime_points; ++i)
+      fprintf(f, "%.9g%s", m->time_points[i], (i % 8 == 7 || i == m->ntime_points - 1) ? "\n" : ", ");
+  }
   fprintf(f, "*STEP, NLGEOM, INC=10000\n*STATIC\n%.9g, 1., %.9g, %.9g\n", m->inc0, m->incmin,
           m->incmax);
   fprintf(f, "*BOUNDARY\n");
@@ -111,7 +134,8 @@ static int write_inp(const CcxModel *m, FILE *f)
   fprintf(f, "*DLOAD, AMPLITUDE=RAMP\n");
   for (int i = 0; i < m->nload; ++i)
     fprintf(f, "%d, P%d, %.12g\n", m->load_elem[i] + 1, m->load_face[i], m->pressure);
-  fprintf(f, "*NODE PRINT, NSET=%s, FREQUENCYF=1\nU\n", m->print_all ? "NALL" : "N_TIP");
+  fprintf(f, "*NODE PRINT, NSET=%s, %s\nU\n", m->print_all ? "NALL" : "N_TIP",
+          m->ntime_points ? "TIME POINTS=TP" : "FREQUENCYF=1");
   fprintf(f, "*END STEP\n");
   return ferror(f) ? SA_ERROR(SA_ERR_IO, "write error") : 0;
 }

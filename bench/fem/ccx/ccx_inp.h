@@ -32,6 +32,7 @@
 
 #define CCX_MAX_REGIONS 8
 #define CCX_MAX_BCS 8
+#define CCX_MAX_TIME_POINTS 64
 
 typedef struct {
   char name[64];
@@ -74,12 +75,19 @@ typedef struct {
   double pressure;     /* [Pa] at step time 1 */
   double inc0, incmin, incmax; /* increment sizes as fractions of the step (time 1) */
   int print_all;       /* 1: print U of every node at every increment (verification runs) */
+  /* > 0: print U only at these step times (*TIME POINTS, TIME POINTS= on *NODE PRINT; ccx cuts
+   * an increment that would pass one, so each is hit exactly) instead of every increment */
+  int ntime_points;
+  double time_points[CCX_MAX_TIME_POINTS];
 } CcxModel;
 
 /* Write NAME.inp and NAME.tip (base [in] is NAME). */
 int ccx_model_write(const CcxModel *m, const char *base);
 /* Signed volume of a corner tetrahedron (a, b, c, d coordinates, 3 each). */
 double ccx_tet_volume(const double *a, const double *b, const double *c, const double *d);
+/* Output times from a comma-separated list list [in] (ascending, in (0, 1], e.g.
+ * "0.25,0.5,0.75,1"): sets m->ntime_points and m->time_points. */
+int ccx_model_set_time_points(CcxModel *m, const char *list);
 /* Add a BC set (nodes copied). */
 int ccx_model_add_bc(CcxModel *m, const char *name, int first, int last, int n, const int *nodes);
 void ccx_model_free(CcxModel *m);

@@ -1,6 +1,6 @@
 /* ccx_post.c - results of the CalculiX peer runs (and of our solver) on one footing.
  *
- * tip BASE [--log FILE]
+ * tip BASE [--log FILE] [--at T1,T2,...]
  *   Reads BASE.tip (ccx_inp.h) and the displacement blocks of BASE.dat (one per increment,
  *   *NODE PRINT ... FREQUENCYF=1) and prints, per increment: step time, the tip displacement
  *   (area-weighted mean over the reference tip surface) and the bending angle: the rotation of
@@ -9,6 +9,12 @@
  *   fem_bending_angle). u_xz = |(u_x, u_z)| is the tip displacement in the bending plane (u_y of
  *   a half model's half tip surface is not the whole tip's, 0, so it is left out). With --log (ccx's stdout)
  *   the last line also gives the increments, attempts and Newton iterations ccx used.
+ *   With --at (step times, e.g. 0.25,0.5,0.75,1 for a deck written with --time-points) it ends
+ *   with one line per requested time, "# at T angle A u_xz U" from the block printed at that
+ *   time (within 1e-6), or "# at T not reached"; then "# last printed T angle A u_xz U" and
+ *   "# reached T", the last converged step time (from the log when given: ccx's "sum of previous
+ *   increments" of its last attempt, or that attempt's step time if the job finished; else the
+ *   last printed time), so a run that stopped short still reports how far it got.
  *   N depends only on the deformed rim of the tip surface (int n da = (1/2) oint x x dl), so
  *   the angle is insensitive to how the surface is triangulated.
  * field BASE DISPFILE
@@ -147,15 +153,25 @@ static int dat_next(FILE *f, int maxid, const int *slot, double *u, double *time
   return 0;
 }
 
-static void log_counts(const char *path, int *inc, int *att, int *iters)
+/* conv [out]: the last converged step time, -1 if unknown (single-step decks). */
+static void log_counts(const char *path, int *inc, int *att, int *iters, double *conv)
 {
   *inc = *att = *iters = 0;
+  *conv = -1;
   FILE *f = fopen(path, "r");
   if (!f) return;
   char line[512];
   int last = 0;
+  double t_attempt = -1, t_before = -1;
   while (fgets(line, sizeof line, f)) {
     int i, a;
+    const char *p;
+    if ((p = strstr(line, "sum of previous increments=")))
+      t_before = atof(p + 27);
+    else if ((p = strstr(line, "actual step time=")))
+      t_attempt = atof(p + 17);
+    else if (strstr(line, "Job finished"))
+      t_before = t_attempt;
     if (sscanf(line, " increment %d attempt %d", &i, &a) == 2) {
       (*att)++;
       if (i > last) last = i;
@@ -163,13 +179,34 @@ static void log_counts(const char *path, int *inc, int *att, int *iters)
       (*iters)++;
   }
   *inc = last;
+  *conv = t_before;
   fclose(f);
 }
 
+#define MAX_AT 64
+
 static int cmd_tip(int argc, char **argv)
 {
-  SA_REQUIRE(argc >= 3, SA_ERR_INPUT, "usage: ccx_post tip BASE [--log FILE]");
-  const char *base = argv[2], *logf = argc >= 5 && !strcmp(argv[3], "--log") ? argv[4] : NULL;
+  SA_REQUIRE(argc >= 3, SA_ERR_INPUT, "usage: ccx_post tip BASE [--log FILE] [--at T1,T2,...]");
+  const char *base = argv[2], *logf = NULL;
+  int nat = 0, got[MAX_AT] = {0};
+  double at[MAX_AT], at_ang[MAX_AT], at_uxz[MAX_AT], last = -1, last_ang = 0, last_uxz = 0;
+  for (int i = 3; i < argc; i += 2) {
+    SA_REQUIRE(i + 1 < argc, SA_ERR_INPUT, "option %s wants a value", argv[i]);
+    if (!strcmp(argv[i], "--log")) {
+      logf = argv[i + 1];
+    } else if (!strcmp(argv[i], "--at")) {
+      for (const char *p = argv[i + 1]; *p;) {
+        char *end;
+        SA_REQUIRE(nat < MAX_AT, SA_ERR_INPUT, "more than %d times in --at", MAX_AT);
+        at[nat++] = strtod(p, &end);
+        SA_REQUIRE(end != p && (*end == ',' || !*end), SA_ERR_INPUT, "bad --at list %s", argv[i + 1]);
+        p = *end ? end + 1 : end;
+      }
+    } else {
+      return SA_ERROR(SA_ERR_INPUT, "unknown option %s", argv[i]);
+    }
+  }
   Tip t;
   SA_CHECK(tip_read(base, &t));
   char path[1024];
@@ -184,11 +221,29 @@ static int cmd_tip(int argc, char **argv)
     tip_eval(&t, u, um, &ang);
     printf("%.6f %.9e %.9e %.9e %.9e %.6f\n", time, um[0], um[1], um[2],
            sqrt(um[0] * um[0] + um[2] * um[2]), ang);
+    last = time;
+    last_ang = ang;
+    last_uxz = sqrt(um[0] * um[0] + um[2] * um[2]);
+    for (int k = 0; k < nat; ++k)
+      if (fabs(time - at[k]) <= 1e-6) {
+        got[k] = 1;
+        at_ang[k] = ang;
+        at_uxz[k] = sqrt(um[0] * um[0] + um[2] * um[2]);
+      }
   }
   fclose(f);
+  for (int k = 0; k < nat; ++k) {
+    if (got[k]) printf("# at %.6f angle %.6f u_xz %.9e\n", at[k], at_ang[k], at_uxz[k]);
+    else printf("# at %.6f not reached\n", at[k]);
+  }
+  int inc, att, it;
+  double conv = -1;
+  if (logf) log_counts(logf, &inc, &att, &it, &conv);
+  if (nat) {
+    printf("# last printed %.6f angle %.6f u_xz %.9e\n", last, last_ang, last_uxz);
+    printf("# reached %.6f\n", conv >= 0 ? conv : last);
+  }
   if (logf) {
-    int inc, att, it;
-    log_counts(logf, &inc, &att, &it);
     printf("# increments %d attempts %d iterations %d\n", inc, att, it);
   }
   free(u);
