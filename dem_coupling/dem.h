@@ -56,6 +56,9 @@ typedef struct {
   double box_lo[3], box_hi[3]; /* simulation box [m]; grains leaving it are lost (counted) */
   double skin;             /* neighbour skin [m] (e.g. 0.2 diameter) */
   int seed;                /* random seed for insertion (> 0; the bridge's own generator) */
+  int resume_new_dt;       /* dem_bridge_setup_from_checkpoint: 1 = dt and dt_safety may differ
+                            * from the checkpoint's (a study variant of the bed, not the same
+                            * run); 0 = every parameter must match bit for bit */
 } DemParams;
 
 /* Rayleigh time step of a Hertz contact [s]: pi R sqrt(rho / G) / (0.1631 nu + 0.8766). */

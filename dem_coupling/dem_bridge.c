@@ -1882,6 +1882,11 @@ int dem_bridge_checkpoint_info(const char *path, DemCheckpointInfo *info) {
  * be the same run). */
 static int ck_params_match(const Checkpoint *ck, const DemParams *p) {
   for (size_t k = 0; k < sizeof ck_fields / sizeof *ck_fields; k++) {
+    /* the time step does not enter the bed's state (positions, velocities, contact
+     * histories), so a variant may change it; every other field shapes the state */
+    if (p->resume_new_dt && (ck_fields[k].off == offsetof(DemParams, dt) ||
+                             ck_fields[k].off == offsetof(DemParams, dt_safety)))
+      continue;
     double a = *(const double *)((const char *)&ck->p + ck_fields[k].off);
     double c = *(const double *)((const char *)p + ck_fields[k].off);
     SA_REQUIRE(memcmp(&a, &c, sizeof a) == 0, SA_ERR_INPUT,

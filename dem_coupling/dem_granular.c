@@ -326,7 +326,8 @@ static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z
       .rolling_friction = gr->rolling_friction, .wall_young = E, .wall_poisson = gr->poisson,
       .silicone_young = g->E_sil, .silicone_poisson = g->nu_sil,
       .dt = g->dt, .dt_safety = 0.35, .gravity = {0, 0, sc->coupling.gravity ? -G_ACC : 0},
-      .skin = (resume ? sc->dem.skin : sc->dem.pour_skin) * g->d, .seed = sc->dem.seed};
+      .skin = (resume ? sc->dem.skin : sc->dem.pour_skin) * g->d, .seed = sc->dem.seed,
+      .resume_new_dt = sc->coupling.resume_new_dt};
   /* the pour column: the bed volume at a loose 0.3 packing above the barrel top */
   if (!resume) g->n_grains = (int)dem_scene_pour_count(gr); /* <= DEM_MAX_GRAINS (dem_check) */
   /* the pour column: a grain column of height h takes sqrt(2 h / g) to fall, so one tall round
@@ -350,7 +351,9 @@ static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z
   if (repeat && dem_bridge_log_append(g->b, log)) sa_error_clear();
   if (resume) {
     SA_CHECK(dem_bridge_setup_from_checkpoint(g->b, &p, resume, g->n_grains));
-    if (!repeat) sa_log(SA_LOG_INFO, "dem", "resumed %d grains from %s", g->n_grains, resume);
+    if (!repeat) sa_log(SA_LOG_INFO, "dem", "resumed %d grains from %s%s", g->n_grains, resume,
+                        sc->coupling.resume_new_dt ? " (resume_new_dt: with this case's DEM time "
+                                                      "step, a variant of the bed)" : "");
   } else {
     SA_CHECK(dem_bridge_setup(g->b, &p));
     if (sc->dem.pour_friction != 1) SA_CHECK(dem_bridge_scale_friction(g->b, sc->dem.pour_friction));

@@ -138,6 +138,10 @@ static const SaParam coupling_params[] = {
     {"resume", SA_PARAM_BOOL, P(resume), "-", "0", 0, 0, 0, NULL,
      "continue from <out>/checkpoint of an earlier run of the same case into the same --out "
      "folder, instead of pouring (same result as a run that was never stopped)"},
+    {"resume_new_dt", SA_PARAM_BOOL, P(resume_new_dt), "-", "0", 0, 0, 0, NULL,
+     "with resume: the checkpointed bed goes on with this case's DEM time step ([dem] "
+     "dt_fraction) instead of refusing one that differs: a study variant of the bed (the DEM "
+     "step study), not its continuation"},
     {"vtk_every", SA_PARAM_INT, P(vtk_every), "-", "25", 0, 100000, 0, NULL,
      "write VTK (silicone + grains) every this many coupling steps (0 = first and last only)"},
     {"wall_surface", SA_PARAM_STRING, P(wall_surface), "-", "cavity_wall", 0, 0, 0, NULL,

@@ -27,7 +27,8 @@ typedef struct {
 typedef struct {
   double interval, relaxation, damping, interface_stiffness, interface_tangential;
   double iteration_tol, initial_relaxation, extrapolation;
-  int sample_every, wall_every, wall_every_rest, gravity, vtk_every, checkpoint_every, resume, iterations, qn_reuse;
+  int sample_every, wall_every, wall_every_rest, gravity, vtk_every, checkpoint_every, resume, resume_new_dt, iterations,
+      qn_reuse;
   int cut_max; /* halvings of an iterated step that does not converge */
   int checkpoint_poured;
   char scheme[SA_STR_MAX];

@@ -366,6 +366,15 @@ static int child(const char *ck, const char *out) {
   q.diameter = 2.9e-3;
   expect("another grain diameter", dem_bridge_setup_from_checkpoint(b, &q, ck, NGRAIN),
          SA_ERR_INPUT, ck, "diameter");
+  q = p; /* another time step: refused unless the run asks for a variant of the bed */
+  q.dt *= 0.5;
+  expect("another time step", dem_bridge_setup_from_checkpoint(b, &q, ck, NGRAIN), SA_ERR_INPUT,
+         ck, "dt =");
+  q = p; /* resume_new_dt frees the time step only */
+  q.resume_new_dt = 1;
+  q.diameter = 2.9e-3;
+  expect("another grain diameter with resume_new_dt",
+         dem_bridge_setup_from_checkpoint(b, &q, ck, NGRAIN), SA_ERR_INPUT, ck, "diameter");
   q = p; /* the silicone wall's moduli (format version 2) are part of the parameters too */
   q.silicone_young = 1e6;
   expect("a compliant silicone wall", dem_bridge_setup_from_checkpoint(b, &q, ck, NGRAIN),
