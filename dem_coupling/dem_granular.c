@@ -77,6 +77,7 @@ typedef struct {
   double *mesh_x[N_MESH], *mesh_f[N_MESH]; /* barrel/piston vertices; per-triangle forces */
   double *piston_v;                        /* piston vertex velocities */
   double dt, d, m_grain, z_top, z_piston, piston_r;
+  double z_barrel; /* the rigid barrel's bottom: 0, or below it with [dem] rigid_band */
   int n_grains;
   double *px, *pv, *pf, *pr; /* grain read-back */
   DemBore *bore;
@@ -217,7 +218,25 @@ static int setup_fem(Run *g) {
     g->t_fem += sa_time_now() - t0;
   }
   const char *wall[] = {cc->wall_surface};
-  SA_CHECK(fem_coupling_surface_create(g->m, 1, wall, &g->cs));
+  /* [dem] rigid_band: the wall's faces that reach into the band go to the rigid barrel, which
+   * then extends down to their lowest node (the two overlap along the band's zig-zag edge, so
+   * the bore has no gap) */
+  double band = g->sc->dem.rigid_band;
+  g->z_barrel = 0;
+  if (band > 0) {
+    const FemSurface *S = fem_mesh_find_surface(g->m, cc->wall_surface);
+    for (int f = 0; S && f < S->nfaces; f++) {
+      const int *fn = S->faces + (size_t)S->nfn * f;
+      double zmin = INFINITY, zmax = -INFINITY;
+      for (int j = 0; j < S->nfn; j++)
+        zmin = fmin(zmin, g->m->xyz[3 * fn[j] + 2]), zmax = fmax(zmax, g->m->xyz[3 * fn[j] + 2]);
+      if (zmax >= -band) g->z_barrel = fmin(g->z_barrel, zmin);
+    }
+  }
+  SA_CHECK(fem_coupling_surface_create_below(g->m, 1, wall, band > 0 ? -band : INFINITY, &g->cs));
+  if (band > 0)
+    sa_log(SA_LOG_INFO, "dem", "rigid_band: the wall above z = %.2f mm is the rigid bore's; the "
+           "barrel reaches down to z = %.2f mm", -1e3 * band, 1e3 * g->z_barrel);
   g->nv = fem_coupling_surface_nverts(g->cs);
   g->nt = fem_coupling_surface_ntri(g->cs);
   size_t v3 = 3 * (size_t)g->nv, t3 = 3 * (size_t)g->nt;
@@ -258,14 +277,16 @@ static int setup_fem(Run *g) {
 
 /* ------------------------------------------------------------------ rigid meshes */
 
-/* Barrel: a tube of radius R_BORE from z = 0 to z_top; segments about 0.75 d around and 2 d
+/* Barrel: a tube of radius R_BORE from z_bot (0, or lower with [dem] rigid_band) to z_top;
+ * segments about 0.75 d around and 2 d
  * high. The wall contact's cost grows with the triangles near a grain (LIGGGHTS resolves each
  * candidate triangle every step: 55 % of the DEM time in perf with 2 mm rows of 48 segments);
  * the facets' sagitta stays below 2.5 % of d. */
-static int make_barrel(double z_top, double d, int *nv, double **xyz, int *nt, int **tri) {
+static int make_barrel(double z_bot, double z_top, double d, int *nv, double **xyz, int *nt,
+                       int **tri) {
   int nth = (int)ceil(2 * M_PI * R_BORE / (0.75 * d));
   if (nth < 24) nth = 24;
-  int nz = (int)ceil(z_top / (2 * d));
+  int nz = (int)ceil((z_top - z_bot) / (2 * d));
   if (nz < 1) nz = 1;
   *nv = nth * (nz + 1), *nt = 2 * nth * nz;
   *xyz = malloc(sizeof(double) * 3 * (size_t)*nv);
@@ -274,7 +295,7 @@ static int make_barrel(double z_top, double d, int *nv, double **xyz, int *nt, i
   for (int k = 0; k <= nz; k++)
     for (int j = 0; j < nth; j++) {
       double th = 2 * M_PI * j / nth, *p = *xyz + 3 * (k * nth + j);
-      p[0] = R_BORE * cos(th), p[1] = R_BORE * sin(th), p[2] = z_top * k / nz;
+      p[0] = R_BORE * cos(th), p[1] = R_BORE * sin(th), p[2] = z_bot + (z_top - z_bot) * k / nz;
     }
   int t = 0;
   for (int k = 0; k < nz; k++)
@@ -369,7 +390,7 @@ static int setup_dem(Run *g, const char *resume, const double *xw_wall, double z
   /* barrel, tall enough for the pour (grains are above barrel_length only while pouring) */
   int bnv, bnt, *btri;
   double *bx;
-  SA_CHECK(make_barrel(g->z_top, g->d, &bnv, &bx, &bnt, &btri));
+  SA_CHECK(make_barrel(g->z_barrel, g->z_top, g->d, &bnv, &bx, &bnt, &btri));
   int rc = dem_bridge_add_mesh(g->b, "barrel", bnv, bx, bnt, btri, DEM_WALL_STEEL,
                                &g->mesh_id[M_BARREL]);
   free(btri);

@@ -188,6 +188,12 @@ static const SaParam dem_params[] = {
      "by more than this fraction of its diameter (at 0.5 its centre reaches the wall's facet "
      "and it can tunnel; Hertz's law itself assumes indentations small against the radius: "
      "bending.csv reports the largest, docs/dem.md)"},
+    {"rigid_band", SA_PARAM_REAL, P(rigid_band), "m", "0", 0, 0.05, 0, NULL,
+     "take the cavity wall's top down to this depth below z = 0 as part of the rigid bore: "
+     "the barrel's rigid mesh (and its friction_piston) extends over it and the FEM's wall "
+     "there gets no grain load (0 = off; the collar clamps the top 5 mm: a stiff bed's beads "
+     "indent the clamped silicone past what the Hertz contact on silicone represents, "
+     "docs/dem.md)"},
     {"balance_tol", SA_PARAM_REAL, P(balance_tol), "-", "0.1", 0, 10, SA_MIN_OPEN, NULL,
      "stop when the grains' force balance misses by more than this fraction of the load"},
     {"seed", SA_PARAM_INT, P(seed), "-", "15485863", 10001, 2147483647, 0, NULL,

@@ -36,7 +36,7 @@ typedef struct {
 } DemCouplingCase;
 
 typedef struct {
-  double dt_fraction, skin, settle_speed, max_overlap, max_indentation, balance_tol,
+  double dt_fraction, skin, settle_speed, max_overlap, max_indentation, rigid_band, balance_tol,
       settle_time_max;
   double pour_softening, pour_speed, pour_friction, pour_skin;
   int seed, check_every, mpi_ranks;

@@ -21,8 +21,21 @@ static int cmp_int(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
+/* Face f of S lies below z_max when every one of its nodes does (reference coordinates). */
+static int face_below(const FemMesh *m, const FemSurface *S, int f, double z_max) {
+  const int *fn = S->faces + (size_t)S->nfn * f;
+  for (int j = 0; j < S->nfn; j++)
+    if (m->xyz[3 * fn[j] + 2] >= z_max) return 0;
+  return 1;
+}
+
 int fem_coupling_surface_create(const FemMesh *m, int nsurf, const char *const *surfaces,
                                 FemCouplingSurface **out) {
+  return fem_coupling_surface_create_below(m, nsurf, surfaces, INFINITY, out);
+}
+
+int fem_coupling_surface_create_below(const FemMesh *m, int nsurf, const char *const *surfaces,
+                                      double z_max, FemCouplingSurface **out) {
   *out = NULL;
   SA_REQUIRE(nsurf > 0, SA_ERR_INPUT, "coupling surface: no surface named");
   int nfaces = 0, nn = 0;
@@ -33,9 +46,11 @@ int fem_coupling_surface_create(const FemMesh *m, int nsurf, const char *const *
                m->source[0] ? m->source : "(built)", surfaces[s]);
     SA_REQUIRE(S->nfn == 3 || S->nfn == 6, SA_ERR_INPUT, "surface '%s': %d nodes per face",
                surfaces[s], S->nfn);
-    nfaces += S->nfaces * (S->nfn == 6 ? 4 : 1);
-    nn += S->nfaces * S->nfn;
+    for (int f = 0; f < S->nfaces; f++)
+      if (face_below(m, S, f, z_max)) nfaces += S->nfn == 6 ? 4 : 1, nn += S->nfn;
   }
+  SA_REQUIRE(nfaces > 0, SA_ERR_INPUT, "coupling surface: no face of '%s' lies below z = %g m",
+             surfaces[0], z_max);
   FemCouplingSurface *c;
   SA_CALLOC(c, 1);
   c->m = m;
@@ -51,7 +66,9 @@ int fem_coupling_surface_create(const FemMesh *m, int nsurf, const char *const *
   int k = 0;
   for (int s = 0; s < nsurf; s++) {
     const FemSurface *S = fem_mesh_find_surface(m, surfaces[s]);
-    for (int i = 0; i < S->nfaces * S->nfn; i++) all[k++] = S->faces[i];
+    for (int f = 0; f < S->nfaces; f++)
+      if (face_below(m, S, f, z_max))
+        for (int j = 0; j < S->nfn; j++) all[k++] = S->faces[(size_t)S->nfn * f + j];
   }
   qsort(all, (size_t)nn, sizeof(int), cmp_int);
   int nu = 0;
@@ -72,6 +89,7 @@ int fem_coupling_surface_create(const FemMesh *m, int nsurf, const char *const *
   for (int s = 0; s < nsurf; s++) {
     const FemSurface *S = fem_mesh_find_surface(m, surfaces[s]);
     for (int f = 0; f < S->nfaces; f++) {
+      if (!face_below(m, S, f, z_max)) continue;
       const int *fn = S->faces + (size_t)S->nfn * f;
       if (S->nfn == 3) {
         for (int j = 0; j < 3; j++) c->tri[3 * t + j] = g2l[fn[j]];

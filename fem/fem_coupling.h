@@ -28,6 +28,10 @@ typedef struct FemCouplingSurface FemCouplingSurface;
  * union, each node once). *out [owned]. */
 int fem_coupling_surface_create(const FemMesh *m, int nsurf, const char *const *surfaces,
                                 FemCouplingSurface **out);
+/* The same made of those faces whose nodes all lie below z_max (reference coordinates): a
+ * wall whose top part another code takes as rigid (the FEM-DEM scene's [dem] rigid_band). */
+int fem_coupling_surface_create_below(const FemMesh *m, int nsurf, const char *const *surfaces,
+                                      double z_max, FemCouplingSurface **out);
 int fem_coupling_surface_nverts(const FemCouplingSurface *c);
 int fem_coupling_surface_ntri(const FemCouplingSurface *c);
 /* [borrowed] 3 * ntri local vertex indices of the flat triangles. */

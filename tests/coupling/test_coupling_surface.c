@@ -12,7 +12,9 @@
  *    sum_i f_i . dx_i = sum_t F_t . dx(centroid_t) for random triangle forces F_t.
  * 3. Rigid-body motion x -> Q X + c of the FEM moves the wall vertices exactly (to round-off),
  *    keeps every triangle area, and the interval velocities equal (x - x_mark) / dt.
- * 4. A missing surface is an input error naming it. */
+ * 4. A missing surface is an input error naming it.
+ * 5. The part below a height (fem_coupling_surface_create_below): the lower half of the faces,
+ *    whose uniform-pressure resultant is p R L (half of 1.), and none is an input error. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -129,6 +131,42 @@ int main(void) {
   fail |= tu_close("rigid motion of the wall", emax, 0, 1e-17, 0);
   fail |= tu_close("interval velocity", vmax, 0, 1e-13, 0);
   fail |= tu_close("area change under rigid motion", amax, 0, 1e-18, 0);
+
+  /* 5. the part below z_max ([dem] rigid_band): z_max = L/2 lies on an element layer (8 cells
+   * along z), so exactly the lower half of the faces is kept, and the same uniform pressure
+   * on them has the resultant 2 p R (L/2) along y */
+  {
+    FemCouplingSurface *h = NULL;
+    TU_CHECK(fem_coupling_surface_create_below(m, 1, names, 0.5 * LEN + 1e-9, &h));
+    int hv = fem_coupling_surface_nverts(h), ht = fem_coupling_surface_ntri(h);
+    const int *htri = fem_coupling_surface_triangles(h);
+    double *hx = malloc(sizeof(double) * 3 * hv), *hf = malloc(sizeof(double) * 3 * ht);
+    double *hn = malloc(sizeof(double) * 3 * hv);
+    if (!hx || !hf || !hn) return 1;
+    fem_coupling_surface_gather(h, m->xyz, hx);
+    double zmax = -INFINITY, Fy = 0;
+    for (int t = 0; t < ht; t++) {
+      double n[3], A = fem_coupling_surface_tri_area(h, hx, t, n);
+      for (int d = 0; d < 3; d++) hf[3 * t + d] = -p * A * n[d];
+      for (int j = 0; j < 3; j++) zmax = fmax(zmax, hx[3 * htri[3 * t + j] + 2]);
+    }
+    fem_coupling_surface_scatter(h, hf, hn);
+    for (int i = 0; i < hv; i++) Fy += hn[3 * i + 1];
+    if (ht != 12 * 4 * 2 * 4 || zmax > 0.5 * LEN + 1e-12) {
+      fprintf(stderr, "below L/2: %d triangles (expected %d), highest vertex z %g\n", ht,
+              12 * 4 * 2 * 4, zmax);
+      fail = 1;
+    }
+    fail |= tu_close("lower half: resultant y (analytic p R L)", Fy, p * R_IN * LEN, 1e-12, 1e-12);
+    FemCouplingSurface *none = NULL;
+    if (fem_coupling_surface_create_below(m, 1, names, -1e-3, &none) != SA_ERR_INPUT || none) {
+      fprintf(stderr, "a surface with no face below z_max was not an input error\n");
+      fail = 1;
+    }
+    sa_error_clear();
+    free(hx), free(hf), free(hn);
+    fem_coupling_surface_destroy(&h);
+  }
 
   /* 4. missing surface */
   FemCouplingSurface *bad = NULL;
