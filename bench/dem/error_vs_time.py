@@ -85,7 +85,7 @@ def main():
                       f"'{fn}' using 1:($3==1?$2:1/0) with points pt {4 + 2 * k} ps 2 lc {k + 1} "
                       "notitle, "
                       f"'{fn}' using 1:2:4 with labels offset 1,0.7 left font ',8' notitle")
-    g = ["set terminal pngcairo size 1000,650", "set output 'error_vs_time.png'",
+    g = ["set terminal pngcairo noenhanced size 1000,650", "set output 'error_vs_time.png'",
          "set logscale xy", "set grid", "set key top right",
          "set title 'FEM-DEM: error of the bend angle(x) - angle(0) against cost (open: each reference)'",
          "set xlabel 'CPU time of the variant [s]'",
