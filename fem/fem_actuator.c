@@ -27,6 +27,15 @@ static const SaParam mesh_params[] = {
      "element order: 2 = tet10 mixed (use this), 1 = tet4 (locks when nearly incompressible)"},
     {"rings", SA_PARAM_INT, P(rings), "-", "1", 0, 1, 0, NULL,
      "radial reinforcement rings present (0 = the design without rings)"},
+    {"kind", SA_PARAM_CHOICE, P(kind), "-", "gmsh", 0, 0, 0, "gmsh|swept",
+     "gmsh = isotropic tets from [mesh] geo; swept = a tensor grid in r, theta, z through every "
+     "interface of ACTUATOR.md's design, each cell 6 tets: elements thin across the rings and "
+     "band and long along them (geo is then not used; docs/fem_time_to_accuracy.md)"},
+    {"h_radial", SA_PARAM_REAL, P(h_radial), "m", "0", 0, 0.05, 0, NULL,
+     "kind = swept: radial size in the silicone's layers (0 = h_band)"},
+    {"grade", SA_PARAM_REAL, P(grade), "-", "1.5", 1, 4, 0, NULL,
+     "kind = swept: growth factor of the axial size from a ring face (h_ring) or a corner up "
+     "to h"},
 };
 #undef P
 #define P(f) offsetof(FemMatParams, f)
@@ -303,6 +312,24 @@ int fem_actuator_mesh(const FemActuatorCase *a, FemMesh **m) {
   FemGeoParam gp[] = {{"rings", a->mesh.rings}, {"h_band", a->mesh.h_band},
                       {"h_ring", a->mesh.h_ring}};
   double t0 = sa_time_now();
+  if (!strcmp(a->mesh.kind, "swept")) {
+    const FemMeshParams *q = &a->mesh;
+    FemSweptActuator p = fem_swept_actuator_default(q->h, q->h_radial > 0 ? q->h_radial : q->h_band,
+                                                    q->h_band, q->h_ring, q->rings);
+    p.grade = q->grade;
+    SA_CHECK(fem_mesh_actuator_swept(&p, q->order, m));
+    SA_CHECK(fem_mesh_check(*m, 1e-9));
+    int nf = 0;
+    for (int s = 0; s < (*m)->nsurfaces; s++) nf += (*m)->surfaces[s].nfaces;
+    double qmin, qmean;
+    fem_mesh_quality(*m, -1, &qmin, &qmean);
+    sa_log(SA_LOG_INFO, "mesh", "generated %s: %d %s elements, %d nodes, %d regions, %d surfaces "
+           "(%d faces), radius ratio min %.3f mean %.3f, %.2f s", (*m)->source, (*m)->nelem,
+           (*m)->nen == 10 ? "tet10" : "tet4", (*m)->nnodes, (*m)->nregions, (*m)->nsurfaces, nf,
+           qmin, qmean, sa_time_now() - t0);
+    sa_timing_add("fem mesh", sa_time_now() - t0);
+    return 0;
+  }
   SA_CHECK(fem_mesh_generate(a->mesh.geo, 3, gp, a->mesh.h, a->mesh.order, m));
   sa_timing_add("fem mesh", sa_time_now() - t0);
   return 0;

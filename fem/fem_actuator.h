@@ -14,6 +14,8 @@ typedef struct {
   char geo[SA_STR_MAX];
   double h, h_band, h_ring;
   int order, rings;
+  char kind[SA_STR_MAX]; /* gmsh (the .geo, isotropic tets) | swept (fem_mesh_actuator_swept) */
+  double h_radial, grade; /* swept only */
 } FemMeshParams;
 
 typedef struct {
@@ -44,7 +46,7 @@ extern const SaParamTable fem_actuator_solver_table;   /* [solver] */
 int fem_actuator_load(const SaCase *c, FemActuatorCase *a);
 /* Write the three resolved sections to f. */
 void fem_actuator_write_resolved(const FemActuatorCase *a, FILE *f);
-/* Generate the mesh (Gmsh) of a [in]: *m [owned]. */
+/* Generate the mesh of a [in] (Gmsh from [mesh] geo, or the swept grid): *m [owned]. */
 int fem_actuator_mesh(const FemActuatorCase *a, FemMesh **m);
 /* Material of every region of m [in] from a [in]: mats [out] m->nregions entries. Which
  * material set (silicone: the law `model` with c10..c30, kappa_ratio, rho; limit and ring:

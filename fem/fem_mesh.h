@@ -98,8 +98,31 @@ typedef struct {
                           none; several sides may share a name) */
 } FemMeshBlock;
 /* blocks [in]; merge_tol [m]: nodes closer than this are one node. One region, "solid".
- * *out [owned, fem_mesh_destroy]. */
+ * A map may collapse a side to a line (the axis r = 0 of a polar block): the flat tets of its
+ * cells are dropped and the others form wedges. *out [owned, fem_mesh_destroy]. */
 int fem_mesh_blocks(int nblocks, const FemMeshBlock *blocks, int order, double merge_tol,
                     FemMesh **out);
+
+/* The reference actuator (meshes/actuator.geo's geometry, groups and names) as a swept mesh
+ * (fem_mesh_swept.c): a tensor grid in (r, theta, z) whose grid lines include every material
+ * interface (band radii and angles, ring faces, the clamp line), each hexahedral cell split
+ * into 6 tets (Kuhn), so elements are long along the rings and the band instead of isotropic;
+ * the cap's core r < R_cav a polar grid whose axis cells are wedges. Regions silicone,
+ * strain_limit, reinforcement (rings only); surfaces cavity_wall, fixed_end, tip, outer, as
+ * the .geo file. Sizes: h along z and around (arc at the wall's mid radius), h_radial across
+ * the silicone layers, h_band across the band, h_ring across and along the rings; between
+ * rings the axial size grows from h_ring at the ring faces by the factor grade up to h. */
+typedef struct {
+  double R_cav, R_out, L_cav, t_cap, L_fix;
+  double band_r_in, band_r_out, band_w;
+  int rings, ring_n;
+  double ring_d, ring_h, ring_pitch, ring_z0;
+  double h, h_radial, h_band, h_ring, grade;
+} FemSweptActuator;
+/* ACTUATOR.md's dimensions with the given sizes. */
+FemSweptActuator fem_swept_actuator_default(double h, double h_radial, double h_band,
+                                            double h_ring, int rings);
+/* p [in], order 1 or 2; SA_ERR_INPUT naming the bad dimension. *out [owned]. */
+int fem_mesh_actuator_swept(const FemSweptActuator *p, int order, FemMesh **out);
 
 #endif

@@ -2,7 +2,8 @@
  * mapped hexahedral blocks, each cell split into 6 tetrahedra (Kuhn split along the cell's main
  * diagonal: conforming between cells, and between blocks whose shared index directions agree),
  * tet4 or tet10 with mid-nodes placed by the mapping; coincident nodes of different blocks are
- * merged; named block sides become surfaces (outward faces). Used by the verification scenes
+ * merged; named block sides become surfaces (outward faces); a map that collapses a side to
+ * a line (r = 0 of a polar block) gives wedge cells, whose flat tets are dropped. Used by the verification scenes
  * (triaxial, footing) and the solver tests (tests/fem/solver/smesh.h). */
 #include "fem_mesh.h"
 
@@ -43,6 +44,81 @@ typedef struct {
   int *faces, *elem;
 } SurfAcc;
 
+/* After a collapsed side: the edge from the axis to a grid point is a radial line in one cell
+ * and a diagonal of the parameter square in its neighbour, and the map puts the two mid-nodes
+ * at different points. Give every edge (pair of corners) one mid-node, on the straight line
+ * where two disagreed (the radial line), and drop the nodes no element uses any more. */
+typedef struct {
+  int a, b, mid;
+} EdgeRec;
+
+static int cmp_edge(const void *p, const void *q) {
+  const EdgeRec *x = p, *y = q;
+  if (x->a != y->a) return x->a < y->a ? -1 : 1;
+  if (x->b != y->b) return x->b < y->b ? -1 : 1;
+  return (x->mid > y->mid) - (x->mid < y->mid);
+}
+
+static int unify_mid_nodes(FemMesh *m) {
+  static const int ed[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};
+  long n = 6L * m->nelem;
+  EdgeRec *r;
+  int *canon, *newid;
+  SA_CALLOC(r, n > 0 ? n : 1);
+  SA_CALLOC(canon, m->nnodes);
+  SA_CALLOC(newid, m->nnodes);
+  for (int i = 0; i < m->nnodes; i++) canon[i] = i;
+  for (long e = 0; e < m->nelem; e++)
+    for (int q = 0; q < 6; q++) {
+      int a = m->conn[10 * e + ed[q][0]], b = m->conn[10 * e + ed[q][1]];
+      EdgeRec *x = r + 6 * e + q;
+      x->a = a < b ? a : b, x->b = a < b ? b : a, x->mid = m->conn[10 * e + 4 + q];
+    }
+  qsort(r, (size_t)n, sizeof *r, cmp_edge);
+  for (long i = 0; i < n;) {
+    long j = i;
+    while (j < n && r[j].a == r[i].a && r[j].b == r[i].b) j++;
+    if (r[j - 1].mid != r[i].mid) {
+      for (long k = i; k < j; k++) canon[r[k].mid] = r[i].mid;
+      for (int c = 0; c < 3; c++)
+        m->xyz[3 * (long)r[i].mid + c] = 0.5 * (m->xyz[3 * (long)r[i].a + c] + m->xyz[3 * (long)r[i].b + c]);
+    }
+    i = j;
+  }
+  free(r);
+  for (long i = 0; i < 10L * m->nelem; i++) m->conn[i] = canon[m->conn[i]];
+  for (int s = 0; s < m->nsurfaces; s++)
+    for (long i = 0; i < 6L * m->surfaces[s].nfaces; i++)
+      m->surfaces[s].faces[i] = canon[m->surfaces[s].faces[i]];
+  /* compact */
+  for (int i = 0; i < m->nnodes; i++) newid[i] = -1;
+  for (long i = 0; i < 10L * m->nelem; i++) newid[m->conn[i]] = 0;
+  int nn = 0;
+  for (int i = 0; i < m->nnodes; i++)
+    if (newid[i] == 0) {
+      newid[i] = nn;
+      memmove(m->xyz + 3 * (long)nn, m->xyz + 3 * (long)i, 3 * sizeof(double));
+      nn++;
+    }
+  m->nnodes = nn;
+  for (long i = 0; i < 10L * m->nelem; i++) m->conn[i] = newid[m->conn[i]];
+  for (int s = 0; s < m->nsurfaces; s++) {
+    FemSurface *S = &m->surfaces[s];
+    for (long i = 0; i < 6L * S->nfaces; i++) S->faces[i] = newid[S->faces[i]];
+    int *tmp = realloc(S->nodes, sizeof(int) * (6 * (size_t)S->nfaces + 1));
+    SA_REQUIRE(tmp, SA_ERR_MEMORY, "surface nodes");
+    memcpy(tmp, S->faces, sizeof(int) * 6 * (size_t)S->nfaces);
+    qsort(tmp, 6 * (size_t)S->nfaces, sizeof(int), cmp_int);
+    int k = 0;
+    for (long i = 0; i < 6L * S->nfaces; i++)
+      if (i == 0 || tmp[i] != tmp[i - 1]) tmp[k++] = tmp[i];
+    S->nodes = tmp, S->nnodes = k;
+  }
+  free(canon);
+  free(newid);
+  return 0;
+}
+
 int fem_mesh_blocks(int nblocks, const FemMeshBlock *blocks, int order, double merge_tol,
                 FemMesh **out) {
   *out = NULL;
@@ -62,7 +138,7 @@ int fem_mesh_blocks(int nblocks, const FemMeshBlock *blocks, int order, double m
   SA_CALLOC(used, nn);
   SurfAcc surf[32];
   int nsurf = 0;
-  long node0 = 0, e = 0;
+  long node0 = 0, e = 0, ndropped = 0;
   for (int b = 0; b < nblocks; b++) {
     const FemMeshBlock *B = &blocks[b];
     int F[3] = {order * B->n[0] + 1, order * B->n[1] + 1, order * B->n[2] + 1};
@@ -94,6 +170,15 @@ int fem_mesh_blocks(int nblocks, const FemMeshBlock *blocks, int order, double m
             }
             double vol = a[0] * (bb[1] * d[2] - bb[2] * d[1]) - a[1] * (bb[0] * d[2] - bb[2] * d[0]) +
                          a[2] * (bb[0] * d[1] - bb[1] * d[0]);
+            /* a map that collapses a side (the axis of a polar block) leaves cells with
+             * coincident corners: their flat tets are dropped, the rest form wedges */
+            double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]),
+                   lb = sqrt(bb[0] * bb[0] + bb[1] * bb[1] + bb[2] * bb[2]),
+                   ld = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if (fabs(vol) <= 1e-9 * la * lb * ld) {
+              ndropped++;
+              continue;
+            }
             if (vol < 0) {
               int tmp[3];
               memcpy(tmp, v[1], sizeof tmp);
@@ -199,9 +284,9 @@ int fem_mesh_blocks(int nblocks, const FemMeshBlock *blocks, int order, double m
   m->xyz = xnew;
   m->etype = order == 1 ? FEM_TET4 : FEM_TET10;
   m->nen = nen;
-  m->nelem = (int)ne;
+  m->nelem = (int)e;
   m->conn = conn;
-  SA_CALLOC(m->region, ne);
+  SA_CALLOC(m->region, e > 0 ? e : 1);
   m->nregions = 1;
   SA_CALLOC(m->region_names, 1);
   strcpy(m->region_names[0], "solid");
@@ -229,6 +314,10 @@ int fem_mesh_blocks(int nblocks, const FemMeshBlock *blocks, int order, double m
   free(newid);
   free(xyz);
   free(used);
+  if (ndropped > 0 && order == 2 && unify_mid_nodes(m)) {
+    fem_mesh_destroy(&m);
+    return SA_ERR_MEMORY;
+  }
   *out = m;
   return 0;
 }

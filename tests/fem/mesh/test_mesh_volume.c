@@ -13,6 +13,7 @@
  *  - parameters reach the .geo (cylinder with A, B, t given). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "mesh_test_util.h"
@@ -176,7 +177,74 @@ static int test_sphere(void)
 }
 
 /* Reference actuator (ACTUATOR.md), mm converted to m. */
-static int test_actuator(int rings)
+/* Faces that bound one element only must be exactly the faces of the named surfaces: a
+ * mesh with an internal crack (blocks or a seam not merged) or a face left out of every
+ * surface fails. */
+typedef struct {
+  int v[3];
+} Tri;
+static int cmp_tri(const void *a, const void *b)
+{
+  const Tri *p = a, *q = b;
+  for (int k = 0; k < 3; ++k)
+    if (p->v[k] != q->v[k]) return p->v[k] < q->v[k] ? -1 : 1;
+  return 0;
+}
+static void sort3(int *v)
+{
+  for (int i = 1; i < 3; ++i)
+    for (int j = i; j > 0 && v[j] < v[j - 1]; --j) {
+      int t = v[j];
+      v[j] = v[j - 1], v[j - 1] = t;
+    }
+}
+static int check_no_crack(const FemMesh *m, const char *label)
+{
+  static const int fo[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  long n = 4L * m->nelem, nb = 0, ns = 0;
+  Tri *t = malloc(sizeof(Tri) * (size_t)n);
+  for (int e = 0; e < m->nelem; ++e)
+    for (int f = 0; f < 4; ++f) {
+      Tri *q = t + 4L * e + f;
+      for (int k = 0; k < 3; ++k) q->v[k] = m->conn[(size_t)m->nen * e + fo[f][k]];
+      sort3(q->v);
+    }
+  qsort(t, (size_t)n, sizeof(Tri), cmp_tri);
+  for (long i = 0; i < n;) {
+    long j = i;
+    while (j < n && !cmp_tri(t + i, t + j)) ++j;
+    if (j - i == 1) ++nb;
+    else if (j - i > 2) {
+      fprintf(stderr, "%s: a face shared by %ld elements\n", label, j - i);
+      free(t);
+      return 1;
+    }
+    i = j;
+  }
+  int fail = 0;
+  for (int s = 0; s < m->nsurfaces; ++s) {
+    const FemSurface *S = &m->surfaces[s];
+    ns += S->nfaces;
+    for (int f = 0; f < S->nfaces && !fail; ++f) {
+      Tri key;
+      for (int k = 0; k < 3; ++k) key.v[k] = S->faces[S->nfn * f + k];
+      sort3(key.v);
+      Tri *hit = bsearch(&key, t, (size_t)n, sizeof(Tri), cmp_tri);
+      /* a surface face must be a boundary face: its neighbours in the sorted list differ */
+      if (!hit || (hit > t && !cmp_tri(hit - 1, hit)) || (hit < t + n - 1 && !cmp_tri(hit + 1, hit))) {
+        fprintf(stderr, "%s: surface %s face %d is not a boundary face\n", label, S->name, f);
+        fail = 1;
+      }
+    }
+  }
+  free(t);
+  char l[128];
+  snprintf(l, sizeof l, "%s: boundary faces = faces of the named surfaces", label);
+  return fail | !mt_close(l, (double)nb, (double)ns, 0, 0);
+}
+
+/* The reference actuator, from actuator.geo (swept = 0) or the swept grid (fem_mesh_swept.c). */
+static int test_actuator_mesh(int rings, int swept)
 {
   int fail = 0;
   const double mm = 1e-3, Rc = 6 * mm, Ro = 8.5 * mm, L = 80 * mm, tc = 4 * mm, Lf = 5 * mm;
@@ -188,11 +256,21 @@ static int test_actuator(int rings)
   const double Vbody = M_PI * (Ro * Ro - Rc * Rc) * L + M_PI * Ro * Ro * tc;
   const double Vsil = Vbody - Vband - Vring;
   const FemGeoParam p[] = {{"rings", rings}};
-  const char *label = rings ? "actuator" : "actuator (no rings)";
+  const char *label = swept ? (rings ? "swept actuator" : "swept actuator (no rings)")
+                            : (rings ? "actuator" : "actuator (no rings)");
   const char *all[] = {"cavity_wall", "fixed_end", "tip", "outer"};
   /* h = 3 mm keeps the test short; the thin parts are meshed at about 0.5-1 mm anyway */
   FemMesh *m = NULL;
-  if (generate("actuator.geo", 1, p, 3e-3, 2, &m)) return 1;
+  if (swept) {
+    /* the swept grid: h 3 mm (as the .geo test), band and rings 0.5 mm across */
+    FemSweptActuator sp = fem_swept_actuator_default(3e-3, 1e-3, 0.5e-3, 0.5e-3, rings);
+    if (fem_mesh_actuator_swept(&sp, 2, &m) || fem_mesh_check(m, 1e-6)) {
+      sa_error_print();
+      return 1;
+    }
+  } else if (generate("actuator.geo", 1, p, 3e-3, 2, &m)) {
+    return 1;
+  }
   const char *regs[] = {"silicone", "strain_limit", "reinforcement"};
   const char *surfs[] = {"cavity_wall", "fixed_end", "tip", "outer"};
   if (fem_mesh_require(m, rings ? 3 : 2, regs, 4, surfs)) {
@@ -243,9 +321,11 @@ static int test_actuator(int rings)
     }
   fail |= check_face_sides(m, label);
   fail |= check_closed(m, label, 4, all);
+  fail |= check_no_crack(m, label);
   fem_mesh_destroy(&m);
   return fail;
 }
+static int test_actuator(int rings) { return test_actuator_mesh(rings, 0); }
 
 int main(void)
 {
@@ -256,5 +336,7 @@ int main(void)
   fail |= test_sphere();
   fail |= test_actuator(1);
   fail |= test_actuator(0);
+  fail |= test_actuator_mesh(1, 1);
+  fail |= test_actuator_mesh(0, 1);
   return fail;
 }
