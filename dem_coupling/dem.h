@@ -171,6 +171,9 @@ double dem_bridge_max_overlap(DemBridge *b);
 /* Largest indentation of a grain into a compliant silicone wall found by the last
  * dem_bridge_max_overlap, as a fraction of the grain diameter [-] (0 without such a wall). */
 double dem_bridge_max_indentation(const DemBridge *b);
+/* Where: pos [out] the centre [m] of the grain of that deepest indentation (NaN when there is
+ * none), to tell a dent at the clamped top from one in the free wall (docs/dem.md). */
+void dem_bridge_indentation_site(const DemBridge *b, double pos[3]);
 /* Where the last dem_bridge_max_overlap found its largest overlap: returns the wall mesh's
  * LIGGGHTS fix id ("mesh_<name>"), or "two grains"; pos [out] the grain's centre [m]. */
 const char *dem_bridge_overlap_site(const DemBridge *b, double pos[3]);

@@ -109,6 +109,7 @@ struct DemBridge {
   int ov_mesh;
   double ov_pos[3];
   double indent; /* largest indentation into a compliant silicone wall (fraction of d) */
+  double indent_pos[3]; /* that grain's centre */
   /* MPI (dem_parallel.h): ranks LIGGGHTS runs on (1: serial, the library's own MPI_Init), this
    * rank, the processor grid asked for (0: LIGGGHTS' choice), and a follower's scratch for the
    * outputs that only the lead receives */
@@ -1351,6 +1352,7 @@ static double max_overlap_here(DemBridge *b) {
   /* grain-wall: the grains in the cells that a triangle's box (grown by rmax) touches; a
    * compliant silicone wall's overlaps are its indentation, kept apart */
   b->indent = 0;
+  b->indent_pos[0] = b->indent_pos[1] = b->indent_pos[2] = NAN;
   for (int im = 0; im < b->nmesh; im++) {
     const DemMesh *m = &b->mesh[im];
     int compliant = m->type == DEM_WALL_SILICONE && b->p.silicone_young > 0;
@@ -1370,7 +1372,10 @@ static double max_overlap_here(DemBridge *b) {
               if (d2 >= rad[j] * rad[j]) continue;
               double ov = (rad[j] - sqrt(d2)) / (2 * rad[j]);
               if (compliant) {
-                if (ov > b->indent) b->indent = ov;
+                if (ov > b->indent) {
+                  b->indent = ov;
+                  memcpy(b->indent_pos, b->pos + 3 * j, sizeof b->indent_pos);
+                }
               } else if (ov > worst) {
                 worst = ov, b->ov_mesh = im;
                 memcpy(b->ov_pos, b->pos + 3 * j, sizeof b->ov_pos);
@@ -2442,6 +2447,10 @@ double dem_bridge_max_overlap(DemBridge *b) {
 }
 
 double dem_bridge_max_indentation(const DemBridge *b) { return b ? b->indent : 0; }
+
+void dem_bridge_indentation_site(const DemBridge *b, double pos[3]) {
+  for (int k = 0; k < 3; k++) pos[k] = b ? b->indent_pos[k] : NAN;
+}
 
 int dem_bridge_write_restart(DemBridge *b, const char *path) {
   if (leads(b)) lead_call(OP_WRITE_RESTART, 0, NULL, 0, NULL, path, slen(path), NULL, 0, NULL, 0);

@@ -943,10 +943,15 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
                  "the silicone wall changes it): the grains are too soft for this load (lower "
                  "[grains] softening) or the piston too fast", ov, g->sc->dem.max_overlap, with,
                  at[0] * 1e3, at[1] * 1e3, at[2] * 1e3);
-      if (deep)
+      if (deep) {
+        double ip[3];
+        dem_bridge_indentation_site(g->b, ip);
         sa_log(SA_LOG_INFO, "dem", "coupling iteration %d: a bead indents the silicone wall by "
-               "%.3g of its diameter, above [dem] max_indentation = %g: not accepted, the FEM's "
-               "wall is tried next", it + 1, ind, g->sc->dem.max_indentation);
+               "%.3g of its diameter, above [dem] max_indentation = %g (bead at r %.2f mm, "
+               "theta %.0f deg, z %.2f mm): not accepted, the FEM's wall is tried next", it + 1,
+               ind, g->sc->dem.max_indentation, 1e3 * hypot(ip[0], ip[1]),
+               atan2(ip[1], ip[0]) * 180 / M_PI, 1e3 * ip[2]);
+      }
       else
         sa_log(SA_LOG_INFO, "dem", "coupling iteration %d: overlap %.3g of the diameter (%s, "
                "grain at (%.2f, %.2f, %.2f) mm) above [dem] max_overlap = %g: not accepted, the "
@@ -1102,14 +1107,19 @@ static int step_checks(Run *g, int step, double s_disp, int full) {
   sa_log(SA_LOG_DEBUG, "dem", "largest overlap %.4g of the diameter (%s, grain at (%.2f, %.2f, "
          "%.2f) mm)", g->overlap, ov_with, ov_at[0] * 1e3, ov_at[1] * 1e3, ov_at[2] * 1e3);
   g->indent = dem_bridge_max_indentation(g->b);
+  double ip[3]; /* the deepest bead's centre: r, theta (0 = +x, the side away from the band), z */
+  dem_bridge_indentation_site(g->b, ip);
+  double ip_r = 1e3 * hypot(ip[0], ip[1]), ip_th = atan2(ip[1], ip[0]) * 180 / M_PI;
   if (g->E_sil > 0)
-    sa_log(SA_LOG_DEBUG, "dem", "largest indentation of the silicone wall %.4g of the diameter",
-           g->indent);
+    sa_log(SA_LOG_DEBUG, "dem", "largest indentation of the silicone wall %.4g of the diameter "
+           "(bead at r %.2f mm, theta %.0f deg, z %.2f mm)", g->indent, ip_r, ip_th, 1e3 * ip[2]);
   SA_REQUIRE(isfinite(g->indent) && g->indent <= sc->dem.max_indentation, SA_ERR_DOMAIN,
              "a bead indents the silicone wall by %.3g of its diameter, above [dem] "
-             "max_indentation = %g, at piston displacement %.3f mm: Hertz's law is out of its "
-             "range and the bead near tunnelling through the wall (refine the wall mesh, or "
-             "a shorter stroke)", g->indent, sc->dem.max_indentation, s_disp * 1e3);
+             "max_indentation = %g, at piston displacement %.3f mm (bead at r %.2f mm, theta "
+             "%.0f deg, z %.2f mm): Hertz's law is out of its range and the bead near "
+             "tunnelling through the wall (a shorter stroke; a dent in the clamped top: [dem] "
+             "rigid_band; docs/dem.md)", g->indent,
+             sc->dem.max_indentation, s_disp * 1e3, ip_r, ip_th, 1e3 * ip[2]);
   SA_REQUIRE(isfinite(g->overlap) && g->overlap <= sc->dem.max_overlap, SA_ERR_DOMAIN,
              "largest contact overlap %.3g of the diameter exceeds [dem] max_overlap = %g at "
              "piston displacement %.3f mm (%s, grain at (%.2f, %.2f, %.2f) mm): the grains are "

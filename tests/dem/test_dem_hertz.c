@@ -57,13 +57,17 @@ static void impact(DemWallType type) {
   snprintf(cmd, sizeof cmd, "velocity all set 0 0 %.17g", -v);
   T_CHECK(dem_bridge_command(b, cmd));
 
-  double f[6], fpeak = 0, f_other = 0, ov_max = 0, ind_max = 0;
+  double f[6], fpeak = 0, f_other = 0, ov_max = 0, ind_max = 0, site[3] = {NAN, NAN, NAN};
   int nforce = 0, steps = 0, ended = 0;
   while (steps < 2000 && !ended) {
     T_CHECK(dem_bridge_run(b, 1));
     steps++;
     ov_max = fmax(ov_max, dem_bridge_max_overlap(b));
-    ind_max = fmax(ind_max, dem_bridge_max_indentation(b));
+    double ind = dem_bridge_max_indentation(b);
+    if (ind > ind_max) { /* where the deepest bead is: above the plate (z = 0) by R - delta */
+      ind_max = ind;
+      dem_bridge_indentation_site(b, site);
+    }
     T_CHECK(dem_bridge_mesh_forces(b, id, f));
     double fz = -f[5]; /* the sphere pushes the wall down */
     f_other = fmax(f_other, fabs(f[0]) + fabs(f[1]) + fabs(f[2]));
@@ -104,12 +108,19 @@ static void impact(DemWallType type) {
   snprintf(what, sizeof what, "%slargest %s (none: the %s)", w, sil ? "overlap" : "indentation",
            sil ? "silicone wall's contact is an indentation" : "steel wall is not compliant");
   t_close(what, sil ? ov_max : ind_max, 0, 1e-15, 0);
+  if (sil) { /* the sphere falls straight onto the plane z = 0: its centre is at (cx, cy),
+               * R - delta above the plane */
+    snprintf(what, sizeof what, "%sdeepest bead's centre x, y [m] (the sphere's path)", w);
+    t_close(what, fabs(site[0] - cx) + fabs(site[1] - cy), 0, 1e-12, 0);
+    snprintf(what, sizeof what, "%sdeepest bead's centre z [m] (R - indentation d)", w);
+    t_close(what, site[2], R - ind_max * p.diameter, 1e-15, 0);
+  }
   if (t_verbose())
     printf("hertz (%s): F_max %.6g N (ref %.6g, rel %.3g), t_c %.6g s (ref %.6g, rel %.3g), "
            "e_meas %.5f (input %.3f), %d contact steps, overlap %.5g / indentation %.5g of d "
-           "(delta_max / d %.5g)\n",
+           "(delta_max / d %.5g), deepest bead at (%.6g, %.6g, %.6g) m\n",
            sil ? "silicone" : "steel", fpeak, fref, fpeak / fref - 1, tc, tref, tc / tref - 1,
-           vel[2] / v, p.restitution, nforce, ov_max, ind_max, dmax / p.diameter);
+           vel[2] / v, p.restitution, nforce, ov_max, ind_max, dmax / p.diameter, site[0], site[1], site[2]);
   dem_bridge_destroy(&b);
 }
 
