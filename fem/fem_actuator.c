@@ -21,8 +21,9 @@ static const SaParam mesh_params[] = {
      "target element size (mesh refinement is this one key)"},
     {"h_band", SA_PARAM_REAL, P(h_band), "m", "2e-3", 1e-4, 0.05, 0, NULL,
      "element size in the strain-limiting band"},
-    {"h_ring", SA_PARAM_REAL, P(h_ring), "m", "2e-3", 1e-4, 0.05, 0, NULL,
-     "element size in the reinforcement rings"},
+    {"h_ring", SA_PARAM_REAL, P(h_ring), "m", "2e-3", 1e-5, 0.05, 0, NULL,
+     "element size in the reinforcement rings (kind = swept: at their faces, where the cells "
+     "grow from by [mesh] grade)"},
     {"order", SA_PARAM_INT, P(order), "-", "2", 1, 2, 0, NULL,
      "element order: 2 = tet10 mixed (use this), 1 = tet4 (locks when nearly incompressible)"},
     {"rings", SA_PARAM_INT, P(rings), "-", "1", 0, 1, 0, NULL,
@@ -34,8 +35,8 @@ static const SaParam mesh_params[] = {
     {"h_radial", SA_PARAM_REAL, P(h_radial), "m", "0", 0, 0.05, 0, NULL,
      "kind = swept: radial size in the silicone's layers (0 = h_band)"},
     {"grade", SA_PARAM_REAL, P(grade), "-", "1.5", 1, 4, 0, NULL,
-     "kind = swept: growth factor of the axial size from a ring face (h_ring) or a corner up "
-     "to h"},
+     "kind = swept: growth factor of the cell size away from a ring face (h_ring) or a corner, "
+     "up to h along z and h_radial across the wall"},
 };
 #undef P
 #define P(f) offsetof(FemMatParams, f)

@@ -110,8 +110,10 @@ int fem_mesh_blocks(int nblocks, const FemMeshBlock *blocks, int order, double m
  * the cap's core r < R_cav a polar grid whose axis cells are wedges. Regions silicone,
  * strain_limit, reinforcement (rings only); surfaces cavity_wall, fixed_end, tip, outer, as
  * the .geo file. Sizes: h along z and around (arc at the wall's mid radius), h_radial across
- * the silicone layers, h_band across the band, h_ring across and along the rings; between
- * rings the axial size grows from h_ring at the ring faces by the factor grade up to h. */
+ * the silicone layers, h_band across the band, h_ring at the rings' faces (their corners), from
+ * which the cells grow by the factor grade: along z up to h between the rings and up to half
+ * the ring's height inside it, along r up to h_radial inside the wall and half the ring's
+ * depth inside it. */
 typedef struct {
   double R_cav, R_out, L_cav, t_cap, L_fix;
   double band_r_in, band_r_out, band_w;

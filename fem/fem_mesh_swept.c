@@ -146,9 +146,12 @@ int fem_mesh_actuator_swept(const FemSweptActuator *p, int order, FemMesh **out)
   rA->c[0] = p->R_cav;
   TRY(add_uniform(rA, p->R_cav, p->band_r_in, p->h_radial));
   TRY(add_uniform(rA, p->band_r_in, p->band_r_out, p->h_band));
+  /* the ring corners (a stiff ring bonded to the silicone: a stress singularity that sets the
+   * angle's convergence, docs/fem_time_to_accuracy.md) get cells of h_ring, graded away */
+  double s_ring = fmin(p->h_ring, p->ring_h);
   if (p->rings) {
-    TRY(add_uniform(rA, p->band_r_out, r_ring, p->h_radial));
-    TRY(add_uniform(rA, r_ring, p->R_out, p->h_ring));
+    TRY(add_graded(rA, p->band_r_out, r_ring, p->h_radial, s_ring, p->h_radial, p->grade));
+    TRY(add_graded(rA, r_ring, p->R_out, s_ring, s_ring, fmax(s_ring, 0.5 * p->ring_d), p->grade));
   } else {
     TRY(add_uniform(rA, p->band_r_out, p->R_out, p->h_radial));
   }
@@ -162,8 +165,7 @@ int fem_mesh_actuator_swept(const FemSweptActuator *p, int order, FemMesh **out)
   TRY(add_uniform(th, M_PI + a, 2 * M_PI, p->h / rm));
   /* z, bottom up: the cap, then the wall through every ring face and the clamp line; graded
    * from the small cells at a ring face (or a corner: floor, clamp line, top) up to h */
-  double zb = -p->L_cav - p->t_cap, s_ring = p->ring_h / ceil(p->ring_h / p->h_ring - 1e-9),
-         s_edge = fmin(p->h, p->h_radial);
+  double zb = -p->L_cav - p->t_cap, s_edge = fmin(p->h, p->h_radial);
   z->c[0] = zb;
   TRY(add_uniform(z, zb, -p->L_cav, fmin(p->h, 0.5 * p->t_cap)));
   double zprev = -p->L_cav, sprev = s_edge;
@@ -190,7 +192,8 @@ int fem_mesh_actuator_swept(const FemSweptActuator *p, int order, FemMesh **out)
   for (int i = 0; i < nbreak; i++) {
     SA_REQUIRE(zk[i] > zprev + 1e-9 && zk[i] <= 1e-12, SA_ERR_INPUT, "swept actuator mesh: "
                "rings, clamp line and cavity overlap at z = %g m", zk[i]);
-    if (is_ring[i]) TRY(add_uniform(z, zprev, zk[i], p->h_ring)); /* inside a ring */
+    if (is_ring[i]) /* inside a ring: graded from both faces */
+      TRY(add_graded(z, zprev, zk[i], s_ring, s_ring, fmax(s_ring, 0.5 * p->ring_h), p->grade));
     else TRY(add_graded(z, zprev, zk[i], sprev, sk[i], p->h, p->grade));
     zprev = zk[i], sprev = sk[i];
   }
