@@ -15,7 +15,9 @@
  *     p_max [Pa], n_out, merit (lazy|energy),
  *     indefinite (lu|modify), predictor (new_load|equilibrium|reuse), reuse_rate, dl_init,
  *     easy_iter, grow, max_iter, max_stall, ls_memory, rtol, dl_max, krylov_max, krylov_rtol,
- *     ref (1: measure the reference factorisation, 0: skip)
+ *     ref (1: measure the reference factorisation, 0: skip),
+ *     swept (1: the ramp's mesh is [mesh] kind = swept: h, hb, hr and hrad (h_radial [m], 0: hb),
+ *     grade; the reference stays the default Gmsh mesh)
  * Output: one line per output step ("step p_kPa angle_deg"), then key = value lines. */
 #include <math.h>
 #include <stdio.h>
@@ -42,6 +44,9 @@ static double cpu_now(void) {
 /* tg > 0: thin_grow of actuator.geo (the distance over which the band and ring sizes grow
  * back to h; the .geo's default is h). */
 static double g_hc = 0, g_gc = 0.5; /* ring-corner grading (actuator.geo h_corner, corner_grade) */
+/* swept > 0: the ramp's mesh is fem_mesh_actuator_swept with h_radial g_hrad and grade g_grade */
+static int g_swept = 0;
+static double g_hrad = 0, g_grade = 1.5;
 static int make_mesh(double h, double hb, double hr, double tg, FemMesh **m, FemMaterial *mats) {
   FemGeoParam gp[5] = {{"h_band", hb}, {"h_ring", hr}};
   int np = 2;
@@ -50,7 +55,13 @@ static int make_mesh(double h, double hb, double hr, double tg, FemMesh **m, Fem
     gp[np++] = (FemGeoParam){"h_corner", g_hc};
     gp[np++] = (FemGeoParam){"corner_grade", g_gc};
   }
-  SA_CHECK(fem_mesh_generate(SOFTACT_MESH_DIR "/actuator.geo", np, gp, h, 2, m));
+  if (g_swept) {
+    FemSweptActuator p = fem_swept_actuator_default(h, g_hrad > 0 ? g_hrad : hb, hb, hr, 1);
+    p.grade = g_grade;
+    SA_CHECK(fem_mesh_actuator_swept(&p, 2, m));
+  } else {
+    SA_CHECK(fem_mesh_generate(SOFTACT_MESH_DIR "/actuator.geo", np, gp, h, 2, m));
+  }
   for (int r = 0; r < (*m)->nregions; r++) {
     if (!strcmp((*m)->region_names[r], "silicone"))
       mats[r] = (FemMaterial){.kind = FEM_MAT_YEOH, .c10 = 0.11e6, .c20 = 0.02e6,
@@ -139,6 +150,9 @@ int main(int argc, char **argv) {
   /* the reference mesh above is the default one, never graded */
   g_hc = atof(arg(argc, argv, "hc", "0"));
   g_gc = atof(arg(argc, argv, "gc", "0.5"));
+  g_swept = atoi(arg(argc, argv, "swept", "0"));
+  g_hrad = atof(arg(argc, argv, "hrad", "0"));
+  g_grade = atof(arg(argc, argv, "grade", "1.5"));
   if (make_mesh(h, hb, hr, tg, &m, mats)) goto fail;
   FemSolver *s;
   if (make_solver(m, mats, &prm, &s)) goto fail;
@@ -168,6 +182,7 @@ int main(int argc, char **argv) {
   double tref = want_ref ? 0.5 * (tf0 + tf1) : NAN;
   printf("thin_grow = %.2f mm\n", 1e3 * tg);
   printf("h_corner = %.3f mm\ncorner_grade = %.3f\n", 1e3 * g_hc, g_gc);
+  if (g_swept) printf("swept = 1\nh_radial = %.3f mm\ngrade = %.3f\n", 1e3 * g_hrad, g_grade);
   printf("mesh = %.2f/%.2f/%.2f mm\nnfree = %d\nnelem = %d\ncompleted = %d\n", 1e3 * h, 1e3 * hb,
          1e3 * hr, st.nfree, st.nelem, rc == 0);
   printf("factorisations = %d\ncholesky = %d\nlu = %d\nnot_pd_attempts = %d\nmodified = %d\n"
