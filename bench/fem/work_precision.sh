@@ -15,4 +15,5 @@ python3 bench/fem/work_precision.py --ref 16.82,36.66,59.32,84.20 \
   "$B:4/2/2=$R/new_4_2_2.out" "$B:2/2/1=$R/new_2_2_1.out" "$B:2/2/0.5=$R/new_2_2_0.5.out" \
   "$B:2/2/0.25=$R/new_2_2_0.25.out" \
   "$C:4/2/1=$R/new_4_2_1_tg1.out" \
-  "CalculiX C3D10 (locks), same mesh:4/2/2=$R/ccx/c3d10_4_2_2.out"
+  "CalculiX C3D10 (locks), same mesh:4/2/2=$R/ccx/c3d10_4_2_2.out" \
+  "swept grid (mesh kind swept), stop 41:3/2/2/0.125=$R/swept_3_2_2_0.125_g2.out"
