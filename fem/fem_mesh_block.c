@@ -3,8 +3,9 @@
  * diagonal: conforming between cells, and between blocks whose shared index directions agree),
  * tet4 or tet10 with mid-nodes placed by the mapping; coincident nodes of different blocks are
  * merged; named block sides become surfaces (outward faces); a map that collapses a side to
- * a line (r = 0 of a polar block) gives wedge cells, whose flat tets are dropped. Used by the verification scenes
- * (triaxial, footing) and the solver tests (tests/fem/solver/smesh.h). */
+ * a line (r = 0 of a polar block) gives wedge cells, whose flat tets are dropped. Used by the
+ * verification scenes (triaxial, footing), the swept actuator (fem_mesh_swept.c) and the
+ * solver tests (tests/fem/solver/smesh.h). */
 #include "fem_mesh.h"
 
 #include <math.h>
@@ -81,7 +82,8 @@ static int unify_mid_nodes(FemMesh *m) {
     if (r[j - 1].mid != r[i].mid) {
       for (long k = i; k < j; k++) canon[r[k].mid] = r[i].mid;
       for (int c = 0; c < 3; c++)
-        m->xyz[3 * (long)r[i].mid + c] = 0.5 * (m->xyz[3 * (long)r[i].a + c] + m->xyz[3 * (long)r[i].b + c]);
+        m->xyz[3 * (long)r[i].mid + c] =
+            0.5 * (m->xyz[3 * (long)r[i].a + c] + m->xyz[3 * (long)r[i].b + c]);
     }
     i = j;
   }

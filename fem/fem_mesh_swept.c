@@ -11,10 +11,12 @@
  * Four blocks of fem_mesh_blocks, all with the index directions (r outward, theta
  * counter-clockwise, z up), so the Kuhn split conforms across every block face and the seam
  * theta = 0 = 2 pi (merged nodes):
- *   wall     r in [R_cav, R_out], z in [-L_cav, -L_fix]   sides: cavity_wall | outer
- *   top      r in [R_cav, R_out], z in [-L_fix, 0]        sides: cavity_wall | fixed_end, top fixed_end
- *   cap ring r in [R_cav, R_out], z in [-L_cav - t_cap, -L_cav]   sides: outer, bottom tip
- *   cap core r in [0, R_cav],     z in [-L_cav - t_cap, -L_cav]   sides: bottom tip, top cavity_wall
+ *   wall     r in [R_cav, R_out], z in [-L_cav, -L_fix]  sides: cavity_wall | outer
+ *   top      r in [R_cav, R_out], z in [-L_fix, 0]       sides: cavity_wall | fixed_end, top
+ *                                                         fixed_end
+ *   cap ring r in [R_cav, R_out], z in [-L_tot, -L_cav]  sides: outer, bottom tip
+ *   cap core r in [0, R_cav],     z in [-L_tot, -L_cav]  sides: bottom tip, top cavity_wall
+ * (L_tot = L_cav + t_cap).
  * The core's axis cells are wedges (their flat Kuhn tets dropped). Mid-nodes lie on the map, so
  * tet10 edges follow the circles exactly. Regions are set from each element's centroid: the grid
  * lines include every interface, so every cell lies in one material. */
