@@ -71,6 +71,7 @@ typedef struct {
   int it_cuts;                /* coupling steps halved because their iteration did not converge */
   double it_fp_max;           /* largest fixed-point residual |x~ - x| / scale accepted */
   int it_overlap;             /* passes not accepted for their overlap */
+  int it_limited;             /* trial walls shortened by [coupling] max_trial_change */
   /* DEM */
   DemBridge *b;
   int mesh_id[N_MESH], mesh_nt[N_MESH], mesh_nv[N_MESH];
@@ -880,6 +881,8 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
    * [coupling] extrapolation (0: the wall where it is) */
   double a = T_last > 0 ? cc->extrapolation * T / T_last : 0;
   for (int k = 0; k < n3; k++) g->x_try[k] = g->xw_cur[k] + a * (g->xw_cur[k] - g->xw_prev[k]);
+  double L = cc->max_trial_change * g->d; /* the trust region of every trial wall (0: none) */
+  if (dem_iqn_limit_step(g->xw_cur, g->x_try, n3, L) < 1) g->it_limited++;
   dem_iqn_new_step(g->iqn);
   int it = 0;
   double res = INFINITY, r_last = INFINITY;
@@ -958,7 +961,9 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
                "FEM's wall is tried next", it + 1, ov, with, at[0] * 1e3, at[1] * 1e3,
                at[2] * 1e3, g->sc->dem.max_overlap);
       dem_iqn_clear(g->iqn);
-      memcpy(g->x_try, g->xw_cur, bytes);
+      memcpy(g->x_next, g->xw_cur, bytes);
+      if (dem_iqn_limit_step(g->x_try, g->x_next, n3, L) < 1) g->it_limited++;
+      memcpy(g->x_try, g->x_next, bytes);
       g->it_overlap++;
       continue;
     }
@@ -977,6 +982,13 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
       else
         for (int k = 0; k < n3; k++) g->x_next[k] = g->x_try[k] + w * (g->xw_cur[k] - g->x_try[k]);
       res = INFINITY;
+    }
+    /* shortened after the convergence test, which judges the full update */
+    double f = dem_iqn_limit_step(g->x_try, g->x_next, n3, L);
+    if (f < 1) {
+      g->it_limited++;
+      sa_log(SA_LOG_DEBUG, "dem", "coupling iteration %d: next wall shortened to %.3g of the "
+             "update ([coupling] max_trial_change = %g of d)", it + 1, f, cc->max_trial_change);
     }
     memcpy(g->x_try, g->x_next, bytes);
   }
@@ -1373,10 +1385,11 @@ static int write_summary(Run *g, double s_reached, const char *status, double wa
             "halved_steps = %d ; steps (or parts) redone as two halves, not converged\n"
             "overlap_rejected_passes = %d ; passes not accepted: an overlap above [dem] max_overlap "
             "or an indentation above max_indentation\n"
+            "limited_trials = %d ; trial walls shortened by [coupling] max_trial_change\n"
             "rollback = %.3f ; s (DEM checkpoints, reloads and FEM snapshots)\n", g->it_steps,
             g->it_steps ? (double)g->it_sum / g->it_steps : 0.0, g->it_max, g->it_res,
             g->it_res_max, g->it_fp_max, g->it_unconverged, g->it_cuts, g->it_overlap,
-            g->t_rollback);
+            g->it_limited, g->t_rollback);
   return sa_file_commit(&f);
 }
 
@@ -1677,8 +1690,9 @@ int dem_granular_run(const DemScene *sc, const SaRun *run) {
            g.t_checks, g.t_out);
   if (g.iqn && started) {
     sa_log(SA_LOG_INFO, "dem", "coupling iterations: %.2f per step (most %d), rollback %.1f s, "
-           "%d steps not converged, %d halved", g.it_steps ? (double)g.it_sum / g.it_steps : 0.0,
-           g.it_max, g.t_rollback, g.it_unconverged, g.it_cuts);
+           "%d steps not converged, %d halved, %d trial walls shortened",
+           g.it_steps ? (double)g.it_sum / g.it_steps : 0.0, g.it_max, g.t_rollback,
+           g.it_unconverged, g.it_cuts, g.it_limited);
     char ck[SA_STR_MAX];
     if (!sa_run_path(run, "checkpoint/step.ckpt", ck)) remove(ck);
     else sa_error_clear();

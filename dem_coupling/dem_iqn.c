@@ -153,3 +153,18 @@ int dem_iqn_update(DemIqn *q, const double *x, const double *xt, double *x_next)
   }
   return 0;
 }
+
+double dem_iqn_limit_step(const double *x, double *x_next, int n, double max_change) {
+  if (!(max_change > 0)) return 1;
+  double m2 = 0;
+  for (int v = 0; v + 2 < n; v += 3) {
+    double e2 = 0;
+    for (int d = 0; d < 3; d++) e2 += (x_next[v + d] - x[v + d]) * (x_next[v + d] - x[v + d]);
+    if (e2 > m2) m2 = e2;
+  }
+  double m = sqrt(m2);
+  if (!(m > max_change)) return 1;
+  double f = max_change / m;
+  for (int i = 0; i < n; i++) x_next[i] = x[i] + f * (x_next[i] - x[i]);
+  return f;
+}

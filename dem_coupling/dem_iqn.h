@@ -36,6 +36,11 @@ void dem_iqn_clear(DemIqn *q);
 int dem_iqn_update(DemIqn *q, const double *x, const double *xt, double *x_next);
 /* Number of columns in the model now. */
 int dem_iqn_columns(const DemIqn *q);
+/* A trust region on the iterate: where some node of x_next [in/out] (n = 3 x nodes, xyz per
+ * node) lies farther than max_change from the same node of x [in], shorten the whole update
+ * x_next - x by one factor so that the farthest node moves exactly max_change (the direction
+ * kept). Returns the factor (1: unchanged; also when max_change <= 0, no limit). */
+double dem_iqn_limit_step(const double *x, double *x_next, int n, double max_change);
 void dem_iqn_destroy(DemIqn **q);
 
 #endif

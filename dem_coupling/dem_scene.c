@@ -109,6 +109,12 @@ static const SaParam coupling_params[] = {
      "pass after a checkpoint or a halving, or after the model was dropped): the next wall is "
      "x + w (x~ - x) instead of the FEM's answer x~ (1 = plain substitution; below 1 for a "
      "stiff bed, whose x~ lies far beyond the fixed point: docs/dem.md)"},
+    {"max_trial_change", SA_PARAM_REAL, P(max_trial_change), "-", "0", 0, 10, 0, NULL,
+     "largest change of any wall node between two walls an iterated step hands to the DEM (its "
+     "first trial against the accepted wall, each later one against the last), as a fraction "
+     "of the bead diameter: a longer update is shortened along its direction (a trust region "
+     "for a stiff bed, whose passes otherwise swing the wall by millimetres into the grains; "
+     "0 = no limit; docs/dem.md)"},
     {"qn_reuse", SA_PARAM_INT, P(qn_reuse), "-", "8", 0, 1000, 0, NULL,
      "coupling steps whose quasi-Newton columns are reused (the bed's response changes slowly)"},
     {"damping", SA_PARAM_REAL, P(damping), "1/s", "30", 0, 1e6, 0, NULL,

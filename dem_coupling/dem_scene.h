@@ -27,6 +27,7 @@ typedef struct {
 typedef struct {
   double interval, relaxation, damping, interface_stiffness, interface_tangential;
   double iteration_tol, initial_relaxation, extrapolation;
+  double max_trial_change; /* fraction of the bead diameter; 0 = no limit */
   int sample_every, wall_every, wall_every_rest, gravity, vtk_every, checkpoint_every, resume, resume_new_dt, iterations,
       qn_reuse;
   int cut_max; /* halvings of an iterated step that does not converge */

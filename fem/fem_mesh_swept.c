@@ -37,7 +37,8 @@ typedef struct {
 
 static int push(Axis *a, double x) {
   SA_REQUIRE(a->n < MAXC, SA_ERR_INPUT, "swept actuator mesh: more than %d cells along one axis "
-             "(element sizes too small)", MAXC);
+             "(element sizes too small: raise [mesh] h, h_radial, h_band or h_ring, or raise grade)",
+             MAXC);
   a->c[++a->n] = x;
   return 0;
 }

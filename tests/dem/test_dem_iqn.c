@@ -8,7 +8,11 @@
  *   model already spans the space), i.e. the second evaluation is the answer.
  * - Without reuse (reuse_steps = 0) the next step needs the full count again.
  * - With an initial relaxation w the update without columns is x + w (H(x) - x), and the solve
- *   still ends within n + 2 evaluations. */
+ *   still ends within n + 2 evaluations.
+ * - The trust region (dem_iqn_limit_step, [coupling] max_trial_change): a long update is
+ *   shortened along its direction so that its farthest node (xyz triples) moves exactly the
+ *   limit, a short one is left bit for bit; with every iterate so limited, the method still
+ *   reaches the fixed point (it takes more evaluations: the limit makes it walk there). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -115,6 +119,47 @@ int main(void) {
   printf("initial relaxation 0.3: first update off by %.3g, %d evaluations (limit %d)\n", dmax,
          k1, N + 2);
   if (dmax > 1e-15 || k1 > N + 2) fails++;
+  dem_iqn_destroy(&q);
+
+  /* trust region: geometry of one limited update */
+  double xa[N], xb[N], xc[N];
+  for (int i = 0; i < N; i++) xa[i] = urand(), xb[i] = xa[i] + 2 * urand();
+  double big = 0;
+  for (int v = 0; v < N; v += 3)
+    big = fmax(big, sqrt(pow(xb[v] - xa[v], 2) + pow(xb[v + 1] - xa[v + 1], 2) +
+                         pow(xb[v + 2] - xa[v + 2], 2)));
+  memcpy(xc, xb, sizeof xc);
+  double L = 0.25 * big, f = dem_iqn_limit_step(xa, xc, N, L), far = 0, par = 0;
+  for (int v = 0; v < N; v += 3)
+    far = fmax(far, sqrt(pow(xc[v] - xa[v], 2) + pow(xc[v + 1] - xa[v + 1], 2) +
+                         pow(xc[v + 2] - xa[v + 2], 2)));
+  for (int i = 0; i < N; i++) par = fmax(par, fabs((xc[i] - xa[i]) - 0.25 * (xb[i] - xa[i])));
+  memcpy(xc, xb, sizeof xc);
+  double f2 = dem_iqn_limit_step(xa, xc, N, 1.01 * big), f0 = dem_iqn_limit_step(xa, xc, N, 0);
+  int same = !memcmp(xc, xb, sizeof xc);
+  printf("trust region: factor %.17g (0.25), farthest node %.3g of the limit, off the direction "
+         "by %.3g; unlimited: factors %g %g, unchanged %d\n", f, far / L, par, f2, f0, same);
+  if (fabs(f - 0.25) > 1e-14 || fabs(far / L - 1) > 1e-14 || par > 1e-14 * big || f2 != 1 ||
+      f0 != 1 || !same)
+    fails++;
+  /* every iterate limited to a fifth of the solution's largest node: still converges */
+  double sol = 0;
+  for (int v = 0; v < N; v += 3)
+    sol = fmax(sol, sqrt(x1[v] * x1[v] + x1[v + 1] * x1[v + 1] + x1[v + 2] * x1[v + 2]));
+  if (dem_iqn_create(N, 2 * N, 0, &q)) return sa_error_print(), 1;
+  dem_iqn_new_step(q);
+  double xl[N] = {0}, xtl[N], xnl[N];
+  int kl = 0, limited = 0;
+  for (kl = 1; kl <= 60; kl++) {
+    apply(A, b1, xl, xtl);
+    if (err(xtl, x1) < 1e-8 && err(xl, x1) < 1e-8) break;
+    dem_iqn_update(q, xl, xtl, xnl);
+    limited += dem_iqn_limit_step(xl, xnl, N, 0.2 * sol) < 1;
+    memcpy(xl, xnl, sizeof xl);
+  }
+  printf("trust region 0.2 of the solution: %d evaluations (limit 60), %d updates shortened\n",
+         kl, limited);
+  if (kl > 60 || limited < 4) fails++;
   dem_iqn_destroy(&q);
   printf("%s\n", fails ? "FAIL" : "PASS");
   return fails != 0;
