@@ -7,7 +7,9 @@
 # interrupted run (same result as a run that was never stopped). Results: OUT/bending.csv, summary.ini, plots.
 #   bench/dem/full_stroke.sh OUT [SOFTENING=30] [STROKE_M=0.025] [CKPT=4] [KEY=VALUE...]
 # (each KEY=VALUE after the fourth argument is passed on as --set KEY=VALUE, e.g.
-# grains.wall_contact=grain for the old near-rigid bead-silicone contact)
+# grains.wall_contact=grain for the old near-rigid bead-silicone contact; stop 42's stiff bed:
+# dem.rigid_band=5e-3 coupling.max_trial_change=0.1, the trust region on the trial walls that
+# took it past 8 mm, docs/dem.md)
 # EXE and SOFTACT_DEM_PLUGIN may point at copies of the binaries (a rebuild of build/ must not
 # swap the DEM plugin under a running study).
 set -eu
