@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "fem_contrib.h"
+#include "fem_kernel_quad.h"
 #include "sa_error.h"
 #include "sa_log.h"
 
@@ -112,6 +113,36 @@ static double tri_area(const double *X, const int *t) {
   return 0.5 * sqrt(dot3(n, n));
 }
 
+/* int N_a dA over the reference face with nodes f [in] nfn (w [out] nfn): the consistent
+ * nodal loads of a unit pressure. The tri6 rule (degree 4) is exact for a flat face, where the
+ * corners get 0. On a curved tri6 face (mid-nodes off their edges' midpoints) a corner can get
+ * a small negative value: a contact force pulling the node in, i.e. a negative contact
+ * stiffness. Such values are set to 0 and the face's weights scaled back to its area. */
+static void face_shape_integrals(const double *X, const int *f, int nfn, double *w) {
+  const FemKqRule *R = nfn == 3 ? &fem_kq_tri3 : &fem_kq_tri6;
+  for (int a = 0; a < nfn; a++) w[a] = 0;
+  for (int q = 0; q < R->n; q++) {
+    double N[6], dN[6][2], t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0}, n[3];
+    fem_kq_tri_shape(nfn, R->L[q], N, dN);
+    for (int a = 0; a < nfn; a++)
+      for (int i = 0; i < 3; i++) {
+        t1[i] += X[3 * f[a] + i] * dN[a][0];
+        t2[i] += X[3 * f[a] + i] * dN[a][1];
+      }
+    cross3(t1, t2, n);
+    double da = R->w[q] * sqrt(dot3(n, n));
+    for (int a = 0; a < nfn; a++) w[a] += da * N[a];
+  }
+  double area = 0, kept = 0;
+  for (int a = 0; a < nfn; a++) {
+    area += w[a];
+    w[a] = fmax(w[a], 0.0);
+    kept += w[a];
+  }
+  if (kept > 0)
+    for (int a = 0; a < nfn; a++) w[a] *= area / kept;
+}
+
 int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactParams *prm,
                        FemContact **out) {
   *out = NULL;
@@ -124,6 +155,9 @@ int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactP
              "contact: friction %g must be >= 0", prm->friction);
   SA_REQUIRE(prm->max_penetration >= 0 && prm->search_radius >= 0, SA_ERR_INPUT,
              "contact: max_penetration and search_radius must be >= 0");
+  SA_REQUIRE(prm->slave_weights == FEM_CONTACT_WEIGHTS_LUMPED ||
+                 prm->slave_weights == FEM_CONTACT_WEIGHTS_CONSISTENT,
+             SA_ERR_INPUT, "contact: slave_weights %d unknown", prm->slave_weights);
   const FemSurface *sf = fem_mesh_find_surface(mesh, slave);
   SA_REQUIRE(sf, SA_ERR_INPUT, "contact: no surface '%s' in the mesh", slave);
   FemContact *c = calloc(1, sizeof *c);
@@ -142,7 +176,14 @@ int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactP
     c->slave_mark[sf->nodes[k]] = k + 1;
   }
   for (int f = 0; f < sf->nfaces; f++) {
-    int t[12], nt = face_tris(sf->faces + (size_t)f * sf->nfn, sf->nfn, t);
+    const int *fc = sf->faces + (size_t)f * sf->nfn;
+    if (prm->slave_weights == FEM_CONTACT_WEIGHTS_CONSISTENT) {
+      double w[6];
+      face_shape_integrals(mesh->xyz, fc, sf->nfn, w);
+      for (int i = 0; i < sf->nfn; i++) c->sarea[c->slave_mark[fc[i]] - 1] += w[i];
+      continue;
+    }
+    int t[12], nt = face_tris(fc, sf->nfn, t);
     for (int j = 0; j < nt; j++) {
       double a = tri_area(mesh->xyz, t + 3 * j) / 3;
       for (int i = 0; i < 3; i++) c->sarea[c->slave_mark[t[3 * j + i]] - 1] += a;

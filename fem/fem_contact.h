@@ -57,7 +57,22 @@ typedef struct {
                            * edges; the faceted normal jumps by the facet angle there and a slave
                            * node crossing an edge makes Newton chatter); its dependence on the
                            * master's nodes is left out of the tangent. 0 = facet normal */
+  int slave_weights;      /* FemContactWeights: how a slave node's area A_k is taken from its
+                           * faces (0 = FEM_CONTACT_WEIGHTS_LUMPED, the default) */
 } FemContactParams;
+
+/* Slave tributary areas A_k. On tri3 faces both give A/3 per node. On tri6 faces:
+ *   LUMPED      each face's 4 flat sub-triangles share their area 1/3 to their vertices:
+ *               corners A/12, mid-nodes A/4 (positive everywhere, but not the loads a
+ *               uniform pressure puts on a quadratic face, so a tet10 slave under a uniform
+ *               pressure is not in uniform stress: tests/fem/solver/test_contact_patch_tet10.c);
+ *   CONSISTENT  A_k = int N_k dA over the reference face (tri6 shape functions, the 6-point
+ *               rule): on a flat face corners 0, mid-nodes A/3, the consistent nodal loads
+ *               of a uniform pressure (a curved face's negative values are set to 0 and the
+ *               face's weights scaled back to its area). A corner node then carries no contact force: nothing
+ *               stops it penetrating where its mid-nodes do not (a slave corner at the edge of
+ *               the contact zone). */
+typedef enum { FEM_CONTACT_WEIGHTS_LUMPED = 0, FEM_CONTACT_WEIGHTS_CONSISTENT = 1 } FemContactWeights;
 
 FemContactParams fem_contact_params_default(void); /* penalty 0 (must be set), mu 0 */
 
