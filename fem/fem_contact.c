@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "fem_contrib.h"
+#include "fem_kernel_quad.h"
 #include "sa_error.h"
 #include "sa_log.h"
 
@@ -36,6 +37,10 @@ struct FemContact {
                                           * solver's ramp parameter) */
   double cp[3], ca[3], R, smin, smax;    /* cylinder */
   int nt, *tri;                          /* master flat triangles (3 nodes each) */
+  int *mrow;      /* master_quadratic: the 6 nodes of each triangle's tri6 face (6 per
+                   * triangle); NULL: reactions on the triangle's own 3 nodes */
+  double *msubL;  /* master_quadratic: (L0, L1, L2) of each triangle's vertices in its face (9
+                   * per triangle) */
   int ns, *snode;                        /* slave nodes */
   double *sarea;                         /* reference tributary areas */
   int *slave_mark;                       /* N: slave index + 1 or 0 */
@@ -89,6 +94,12 @@ static void tangential_part(const double *l, const double n[3], double p[3]) {
   for (int i = 0; i < 3; i++) p[i] = l[i] - s * n[i];
 }
 
+/* A tri6 face's 4 corner/mid-node triangles (local node numbers, orientation kept) and the
+ * face coordinates (L0, L1, L2) of its 6 nodes (mid-nodes on edges 01, 12, 20). */
+static const int tri6_sub[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}};
+static const double tri6_L[6][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1},
+                                    {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
+
 /* The flat (sub-)triangles of a face: tri3 itself, tri6 its 4 corner/mid-node triangles
  * (orientation kept). Returns the count written to t [out] 12. */
 static int face_tris(const int *f, int nfn, int *t) {
@@ -96,10 +107,20 @@ static int face_tris(const int *f, int nfn, int *t) {
     memcpy(t, f, 3 * sizeof *t);
     return 1;
   }
-  static const int sub[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}};
   for (int k = 0; k < 4; k++)
-    for (int i = 0; i < 3; i++) t[3 * k + i] = f[sub[k][i]];
+    for (int i = 0; i < 3; i++) t[3 * k + i] = f[tri6_sub[k][i]];
   return 4;
+}
+
+/* The master nodes that receive the reaction of a slave on triangle t: rows [out] 6; returns
+ * their count (3: the triangle's vertices; 6: its tri6 face's nodes, master_quadratic). */
+static int master_rows(const FemContact *c, int t, int *rows) {
+  if (c->mrow) {
+    memcpy(rows, c->mrow + 6 * t, 6 * sizeof *rows);
+    return 6;
+  }
+  memcpy(rows, c->tri + 3 * t, 3 * sizeof *rows);
+  return 3;
 }
 
 static double tri_area(const double *X, const int *t) {
@@ -110,6 +131,36 @@ static double tri_area(const double *X, const int *t) {
   }
   cross3(u, v, n);
   return 0.5 * sqrt(dot3(n, n));
+}
+
+/* int N_a dA over the reference face with nodes f [in] nfn (w [out] nfn): the consistent
+ * nodal loads of a unit pressure. The tri6 rule (degree 4) is exact for a flat face, where the
+ * corners get 0. On a curved tri6 face (mid-nodes off their edges' midpoints) a corner can get
+ * a small negative value: a contact force pulling the node in, i.e. a negative contact
+ * stiffness. Such values are set to 0 and the face's weights scaled back to its area. */
+static void face_shape_integrals(const double *X, const int *f, int nfn, double *w) {
+  const FemKqRule *R = nfn == 3 ? &fem_kq_tri3 : &fem_kq_tri6;
+  for (int a = 0; a < nfn; a++) w[a] = 0;
+  for (int q = 0; q < R->n; q++) {
+    double N[6], dN[6][2], t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0}, n[3];
+    fem_kq_tri_shape(nfn, R->L[q], N, dN);
+    for (int a = 0; a < nfn; a++)
+      for (int i = 0; i < 3; i++) {
+        t1[i] += X[3 * f[a] + i] * dN[a][0];
+        t2[i] += X[3 * f[a] + i] * dN[a][1];
+      }
+    cross3(t1, t2, n);
+    double da = R->w[q] * sqrt(dot3(n, n));
+    for (int a = 0; a < nfn; a++) w[a] += da * N[a];
+  }
+  double area = 0, kept = 0;
+  for (int a = 0; a < nfn; a++) {
+    area += w[a];
+    w[a] = fmax(w[a], 0.0);
+    kept += w[a];
+  }
+  if (kept > 0)
+    for (int a = 0; a < nfn; a++) w[a] *= area / kept;
 }
 
 int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactParams *prm,
@@ -124,6 +175,11 @@ int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactP
              "contact: friction %g must be >= 0", prm->friction);
   SA_REQUIRE(prm->max_penetration >= 0 && prm->search_radius >= 0, SA_ERR_INPUT,
              "contact: max_penetration and search_radius must be >= 0");
+  SA_REQUIRE(prm->slave_weights == FEM_CONTACT_WEIGHTS_LUMPED ||
+                 prm->slave_weights == FEM_CONTACT_WEIGHTS_CONSISTENT,
+             SA_ERR_INPUT, "contact: slave_weights %d unknown", prm->slave_weights);
+  SA_REQUIRE(prm->master_quadratic == 0 || prm->master_quadratic == 1, SA_ERR_INPUT,
+             "contact: master_quadratic must be 0 or 1");
   const FemSurface *sf = fem_mesh_find_surface(mesh, slave);
   SA_REQUIRE(sf, SA_ERR_INPUT, "contact: no surface '%s' in the mesh", slave);
   FemContact *c = calloc(1, sizeof *c);
@@ -142,7 +198,14 @@ int fem_contact_create(const FemMesh *mesh, const char *slave, const FemContactP
     c->slave_mark[sf->nodes[k]] = k + 1;
   }
   for (int f = 0; f < sf->nfaces; f++) {
-    int t[12], nt = face_tris(sf->faces + (size_t)f * sf->nfn, sf->nfn, t);
+    const int *fc = sf->faces + (size_t)f * sf->nfn;
+    if (prm->slave_weights == FEM_CONTACT_WEIGHTS_CONSISTENT) {
+      double w[6];
+      face_shape_integrals(mesh->xyz, fc, sf->nfn, w);
+      for (int i = 0; i < sf->nfn; i++) c->sarea[c->slave_mark[fc[i]] - 1] += w[i];
+      continue;
+    }
+    int t[12], nt = face_tris(fc, sf->nfn, t);
     for (int j = 0; j < nt; j++) {
       double a = tri_area(mesh->xyz, t + 3 * j) / 3;
       for (int i = 0; i < 3; i++) c->sarea[c->slave_mark[t[3 * j + i]] - 1] += a;
@@ -192,6 +255,22 @@ int fem_contact_set_master(FemContact *c, const char *master) {
   c->nt = 0;
   for (int f = 0; f < mf->nfaces; f++)
     c->nt += face_tris(mf->faces + (size_t)f * mf->nfn, mf->nfn, c->tri + 3 * c->nt);
+  free(c->mrow);
+  free(c->msubL);
+  c->mrow = NULL;
+  c->msubL = NULL;
+  if (mf->nfn == 6 && c->prm.master_quadratic) {
+    c->mrow = malloc(sizeof *c->mrow * 6 * (size_t)c->nt);
+    c->msubL = malloc(sizeof *c->msubL * 9 * (size_t)c->nt);
+    SA_REQUIRE(c->mrow && c->msubL, SA_ERR_MEMORY, "contact master faces");
+    for (int f = 0; f < mf->nfaces; f++)
+      for (int k = 0; k < 4; k++) {
+        int t = 4 * f + k; /* face_tris' order */
+        memcpy(c->mrow + 6 * t, mf->faces + (size_t)f * 6, 6 * sizeof *c->mrow);
+        for (int j = 0; j < 3; j++)
+          memcpy(c->msubL + 9 * t + 3 * j, tri6_L[tri6_sub[k][j]], 3 * sizeof(double));
+      }
+  }
   snprintf(c->master, sizeof c->master, "%s", master);
   c->target = TGT_MESH;
   free(c->vn);
@@ -460,11 +539,15 @@ static int mesh_search(const FemContact *c, int node, const double *x, const dou
 }
 
 /* Force of master triangle t on slave k, with the positions of the slave xs, the triangle's
- * nodes xt (9) and the anchor triangle's nodes xa (9). Fs [out] 3 on the slave, Fm [out] 9 on
- * the triangle's nodes. frozen/slip_in as node_law. Returns active. */
+ * nodes xt (9) and the anchor triangle's nodes xa (9). Fs [out] 3 on the slave, Fm [out] on
+ * the master rows (master_rows): Lsub NULL, the triangle's 3 nodes with its linear functions;
+ * else Lsub [in] 9, the face coordinates of the triangle's vertices, the tri6 face's 6 nodes
+ * with the quadratic functions at the contact point. frozen/slip_in as node_law. Returns
+ * active. */
 static int mesh_pair(const FemContact *c, int k, const double *xs, const double *xt,
-                     const double *xa, const double *vn3, int frozen, int slip_in, double *Fs,
-                     double *Fm, double *g_out, double *n_out, double *tn, double *tt, int *slip) {
+                     const double *xa, const double *vn3, const double *Lsub, int frozen,
+                     int slip_in, double *Fs, double *Fm, double *g_out, double *n_out,
+                     double *tn, double *tt, int *slip) {
   double bc[3], n[3], xc[3], a[3], g;
   closest_on_tri(xs, xt, xt + 3, xt + 6, bc);
   if (vn3) { /* smooth_normals: the vertex normals interpolated at the closest point */
@@ -484,8 +567,17 @@ static int mesh_pair(const FemContact *c, int k, const double *xs, const double 
    * xs - xc is along the facet normal, not along n, so x - a would carry a spurious slip) */
   int act = node_law(&c->prm, c->sarea[k], g, c->lam[k], c->lamT + 3 * k, n, NULL, vn3 ? xc : xs, a,
                      frozen, slip_in, Fs, NULL, tn, tt, slip);
-  for (int j = 0; j < 3; j++)
-    for (int i = 0; i < 3; i++) Fm[3 * j + i] = -bc[j] * Fs[i];
+  if (Lsub) {
+    double Lq[3] = {0, 0, 0}, N6[6];
+    for (int j = 0; j < 3; j++)
+      for (int a = 0; a < 3; a++) Lq[a] += bc[j] * Lsub[3 * j + a];
+    fem_kq_tri_shape(6, Lq, N6, NULL);
+    for (int a = 0; a < 6; a++)
+      for (int i = 0; i < 3; i++) Fm[3 * a + i] = -N6[a] * Fs[i];
+  } else {
+    for (int j = 0; j < 3; j++)
+      for (int i = 0; i < 3; i++) Fm[3 * j + i] = -bc[j] * Fs[i];
+  }
   if (g_out) *g_out = g;
   if (n_out) memcpy(n_out, n, 3 * sizeof *n);
   return act;
@@ -526,8 +618,8 @@ static int pair_eval(const FemContact *c, int k, int t, const double *xl, const 
       xt[3 * i + j] = xl[3 * rt[i] + j];
       xa[3 * i + j] = xl[3 * ra[i] + j];
     }
-  return mesh_pair(c, k, xl, xt, xa, c->vn ? vn3 : NULL, frozen, slip_in, Fs, Fm, g, n, tn, tt,
-                   slip);
+  return mesh_pair(c, k, xl, xt, xa, c->vn ? vn3 : NULL, c->msubL ? c->msubL + 9 * t : NULL,
+                   frozen, slip_in, Fs, Fm, g, n, tn, tt, slip);
 }
 
 /* ------------------------------------------------------------------ contributor */
@@ -599,7 +691,7 @@ static int contact_eval(void *ctx, FemAsmView *v) {
     c->last_tri[k] = t;
     if (t < 0) continue;
     int L[7], rt[3], ra[3], nl = pair_nodes(c, k, t, L, rt, ra);
-    double xl[21], Fs[3], Fm[9], tt[3];
+    double xl[21], Fs[3], Fm[18], tt[3];
     for (int r = 0; r < nl; r++) memcpy(xl + 3 * r, x + 3 * L[r], 3 * sizeof(double));
     if (!pair_eval(c, k, t, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt, &slip))
       continue;
@@ -610,9 +702,10 @@ static int contact_eval(void *ctx, FemAsmView *v) {
     }
     double f[3] = {-Fs[0], -Fs[1], -Fs[2]};
     fem_asm_add_force(v, A, f);
-    for (int j = 0; j < 3; j++) {
+    int rows[7] = {A}, nm = master_rows(c, t, rows + 1);
+    for (int j = 0; j < nm; j++) {
       double fm[3] = {-Fm[3 * j], -Fm[3 * j + 1], -Fm[3 * j + 2]};
-      fem_asm_add_force(v, c->tri[3 * t + j], fm);
+      fem_asm_add_force(v, rows[1 + j], fm);
     }
     if (!wantK) continue;
     /* central differences of the pair's forces, discrete state frozen */
@@ -625,11 +718,11 @@ static int contact_eval(void *ctx, FemAsmView *v) {
       if (l > h) h = l;
     }
     h *= 1e-7;
-    double Kc[4][7][9]; /* rows: slave, triangle nodes; columns: local nodes */
+    double Kc[7][7][9]; /* rows: slave, master rows; columns: local nodes */
     memset(Kc, 0, sizeof Kc);
     for (int r = 0; r < nl; r++)
       for (int j = 0; j < 3; j++) {
-        double Fp[12], Fmn[12], gg, nn[3], tnn, ttt[3];
+        double Fp[21], Fmn[21], gg, nn[3], tnn, ttt[3];
         int sp;
         double keep = xl[3 * r + j];
         xl[3 * r + j] = keep + h;
@@ -637,12 +730,11 @@ static int contact_eval(void *ctx, FemAsmView *v) {
         xl[3 * r + j] = keep - h;
         pair_eval(c, k, t, xl, rt, ra, 1, slip, Fmn, Fmn + 3, &gg, nn, &tnn, ttt, &sp);
         xl[3 * r + j] = keep;
-        for (int q = 0; q < 4; q++)
+        for (int q = 0; q <= nm; q++)
           for (int i = 0; i < 3; i++)
             Kc[q][r][3 * i + j] = -(Fp[3 * q + i] - Fmn[3 * q + i]) / (2 * h);
       }
-    int rows[4] = {A, c->tri[3 * t], c->tri[3 * t + 1], c->tri[3 * t + 2]};
-    for (int q = 0; q < 4; q++)
+    for (int q = 0; q <= nm; q++)
       for (int r = 0; r < nl; r++) fem_asm_add_block(v, rows[q], L[r], Kc[q][r]);
   }
   return 0;
@@ -691,7 +783,7 @@ static void contact_commit(void *ctx, const double *x) {
       int t = mesh_search(c, A, x, xs, c->last_tri[k]);
       if (t >= 0) {
         int L[7], rt[3], ra[3], nl = pair_nodes(c, k, t, L, rt, ra);
-        double xl[21], Fs[3], Fm[9];
+        double xl[21], Fs[3], Fm[18];
         for (int r = 0; r < nl; r++) memcpy(xl + 3 * r, x + 3 * L[r], 3 * sizeof(double));
         act = pair_eval(c, k, t, xl, rt, ra, 0, -1, Fs, Fm, &g, n, &tn, tt,
                         &slip);
@@ -757,10 +849,11 @@ static int contact_candidates(void *ctx, const FemMesh *m, FemPairSink *sink) {
       double bc[3];
       if (closest_on_tri(xs, m->xyz + 3 * v[0], m->xyz + 3 * v[1], m->xyz + 3 * v[2], bc) > r * r)
         continue;
-      for (int j = 0; j < 3; j++) {
-        if (v[j] == c->snode[k]) continue;
-        fem_pairs_add(sink, c->snode[k], v[j]);
-        fem_pairs_add(sink, v[j], c->snode[k]);
+      int rows[6], nm = master_rows(c, t, rows);
+      for (int j = 0; j < nm; j++) {
+        if (rows[j] == c->snode[k]) continue;
+        fem_pairs_add(sink, c->snode[k], rows[j]);
+        fem_pairs_add(sink, rows[j], c->snode[k]);
       }
     }
   }
@@ -915,7 +1008,7 @@ int fem_contact_slaves(const FemContact *c, const int **node, const double **are
 void fem_contact_destroy(FemContact **cp) {
   if (!cp || !*cp) return;
   FemContact *c = *cp;
-  void *p[] = {c->last_tri, c->tri, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
+  void *p[] = {c->last_tri, c->tri, c->mrow, c->msubL, c->snode, c->sarea, c->slave_mark, c->anc, c->anc_f, c->anc_b,
                c->gap_c, c->tn_c, c->tt_c, c->nrm_c, c->vn, c->lam,
                c->lam_c, c->lam_t, c->lamT, c->lamT_c, c->lamT_t, c->lam_m, c->lamT_m, c->anc_m,
                c->anc_bm, c->anc_fm,

@@ -5,11 +5,13 @@
  * slave surface of the mesh with ONE target:
  *   - a master surface of the mesh (another body: large sliding, the closest master face is
  *     searched again at every evaluation, i.e. every Newton iterate and line-search trial;
- *     tri6 faces are split into their 4 flat sub-triangles);
+ *     tri6 faces are split into their 4 flat sub-triangles for the geometry; the reactions go
+ *     to the sub-triangle's nodes or, with master_quadratic, to the face's 6 nodes);
  *   - a rigid plane (point, normal pointing into the side where the slave lives);
  *   - a rigid cylinder wall (axis point, axis direction, radius, axial extent; the slave lives
  *     inside, e.g. the fill in the barrel).
- * Per slave node k with reference tributary area A_k (a third of each adjacent (sub-)triangle):
+ * Per slave node k with reference tributary area A_k (slave_weights: by default a third of
+ * each adjacent (sub-)triangle):
  *   gap g (signed distance to the target, < 0 = penetration), outward target normal n,
  *   normal pressure  t_N = eps_N <-g>            [Pa], eps_N the penalty [Pa/m],
  *   tangential trial t_T = -eps_T P (x - a)      (a: the stick anchor, P = I - n n),
@@ -57,7 +59,31 @@ typedef struct {
                            * edges; the faceted normal jumps by the facet angle there and a slave
                            * node crossing an edge makes Newton chatter); its dependence on the
                            * master's nodes is left out of the tangent. 0 = facet normal */
+  int slave_weights;      /* FemContactWeights: how a slave node's area A_k is taken from its
+                           * faces (0 = FEM_CONTACT_WEIGHTS_LUMPED, the default) */
+  int master_quadratic;   /* mesh master with tri6 faces: 1 = a slave node's reaction goes to
+                           * the 6 nodes of the face with its quadratic shape functions at the
+                           * contact point (the face's own interpolation); 0 (default) = to the
+                           * 3 nodes of the flat sub-triangle, linearly. The geometry (closest
+                           * point, gap, normal) is the flat sub-triangle's either way */
 } FemContactParams;
+
+/* Slave tributary areas A_k. On tri3 faces both give A/3 per node. On tri6 faces:
+ *   LUMPED      each face's 4 flat sub-triangles share their area 1/3 to their vertices:
+ *               corners A/12, mid-nodes A/4 (positive everywhere, but not the loads a
+ *               uniform pressure puts on a quadratic face, so a tet10 slave under a uniform
+ *               pressure is not in uniform stress: tests/fem/solver/test_contact_patch_tet10.c);
+ *   CONSISTENT  A_k = int N_k dA over the reference face (tri6 shape functions, the 6-point
+ *               rule): on a flat face corners 0, mid-nodes A/3, the consistent nodal loads
+ *               of a uniform pressure (a curved face's negative values are set to 0 and the
+ *               face's weights scaled back to its area). A corner node then carries no
+ *               contact force: nothing stops it penetrating where its mid-nodes do not (a
+ *               slave corner at the edge of the contact zone; on the non-matching patch test
+ *               corners penetrate 1-2e-8 m whatever the penalty). */
+typedef enum {
+  FEM_CONTACT_WEIGHTS_LUMPED = 0,
+  FEM_CONTACT_WEIGHTS_CONSISTENT = 1
+} FemContactWeights;
 
 FemContactParams fem_contact_params_default(void); /* penalty 0 (must be set), mu 0 */
 

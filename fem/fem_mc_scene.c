@@ -71,7 +71,7 @@
 
 typedef struct {
   char fill_geo[SA_STR_MAX], wall_surface[SA_STR_MAX], fixed_surface[SA_STR_MAX];
-  char tip_surface[SA_STR_MAX], initial_stress[SA_STR_MAX];
+  char tip_surface[SA_STR_MAX], initial_stress[SA_STR_MAX], slave_weights[SA_STR_MAX];
   double fill_h, fill_height, barrel_length, stroke, penalty, penalty_tangent, augment_tol;
   double k0_ratio;
   int n_steps, max_cuts, vtk_every, gravity, smooth_normals, augment;
@@ -110,6 +110,11 @@ static const SaParam mc_params[] = {
     {"smooth_normals", SA_PARAM_BOOL, P(smooth_normals), "-", "1", 0, 0, 0, NULL,
      "cavity contact: interpolated vertex normals of the faceted wall (0: facet normals, whose "
      "jumps at the facet edges stall Newton in this scene)"},
+    {"slave_weights", SA_PARAM_CHOICE, P(slave_weights), "-", "lumped", 0, 0, 0,
+     "lumped|consistent",
+     "the fill's contact areas per node on tri6 faces (tet10 fill): lumped = corners 1/12, "
+     "mid-nodes 1/4 of a face; consistent = corners 0, mid-nodes 1/3, which a uniform pressure "
+     "needs (tet10 patch test, docs/contact.md), but leaves the corners free to penetrate"},
     {"gravity", SA_PARAM_BOOL, P(gravity), "-", "1", 0, 0, 0, NULL,
      "geostatic stage: gravity (-z, 9.81 m/s^2) on every body before the stroke"},
     {"initial_stress", SA_PARAM_CHOICE, P(initial_stress), "-", "none", 0, 0, 0, "none|k0",
@@ -596,6 +601,8 @@ static int build(Mc *o) {
   cp.penalty_tangent = P->penalty_tangent * cp.penalty;
   cp.search_radius = 2 * P->fill_h;
   cp.smooth_normals = P->smooth_normals;
+  cp.slave_weights = strcmp(P->slave_weights, "consistent") ? FEM_CONTACT_WEIGHTS_LUMPED
+                                                            : FEM_CONTACT_WEIGHTS_CONSISTENT;
   cp.friction = 0; /* geostatic stage: frictionless */
   SA_CHECK(fem_contact_create(m, "fill_cavity", &cp, &o->c[C_WALL]));
   SA_CHECK(fem_contact_set_master(o->c[C_WALL], P->wall_surface));
