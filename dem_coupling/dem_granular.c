@@ -886,6 +886,7 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
   dem_iqn_new_step(g->iqn);
   int it = 0;
   double res = INFINITY, r_last = INFINITY;
+  int refused_last = 0; /* the last pass had an overlap or indentation above its limit */
   for (;; it++) {
     if (it > 0) {
       SA_CHECK(dem_reload(g, ck, z_start));
@@ -925,16 +926,20 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
            1e9 * scale / sqrt((double)g->nv), 1e9 * step_motion / sqrt((double)g->nv),
            1e6 * m_max, dem_iqn_columns(g->iqn), g->newton, ang);
     r_last = r_rel;
-    if (it + 1 >= cc->iterations) break;
+    int last = it + 1 >= cc->iterations;
     /* A pass whose grains overlap the wall (or each other) beyond the run check's limit is
      * never the accepted one: the trial wall was pushed into the bed (on one bed the
      * quasi-Newton trial put a floor node ~100 um inside a grain at an rms residual of 0.23,
-     * docs/dem.md "stop 30"). The FEM's answer x~ has felt that push: substitute it. */
+     * docs/dem.md "stop 30"). The FEM's answer x~ has felt that push: substitute it. The last
+     * pass is checked too: a step that ends on a refused pass is a failed step (halved while
+     * cut_max allows; then the run check stops the run), never accepted (stop 42: a stiff bed's
+     * step ended on its 15th refused pass and was taken). */
     double t_ov = sa_time_now(), ov = dem_bridge_max_overlap(g->b);
     double ind = dem_bridge_max_indentation(g->b); /* the same rule for the silicone's */
     g->t_checks += sa_time_now() - t_ov;
     int deep = !(ind <= g->sc->dem.max_indentation);
     if (deep || !(ov <= g->sc->dem.max_overlap)) {
+      const char *next = last ? "and the step's last pass" : "the FEM's wall is tried next";
       double at[3];
       const char *with = dem_bridge_overlap_site(g->b, at);
       /* two grains two diameters above the silicone's top (z = 0) touch only grains and the
@@ -951,22 +956,27 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
         dem_bridge_indentation_site(g->b, ip);
         sa_log(SA_LOG_INFO, "dem", "coupling iteration %d: a bead indents the silicone wall by "
                "%.3g of its diameter, above [dem] max_indentation = %g (bead at r %.2f mm, "
-               "theta %.0f deg, z %.2f mm): not accepted, the FEM's wall is tried next", it + 1,
+               "theta %.0f deg, z %.2f mm): not accepted, %s", it + 1,
                ind, g->sc->dem.max_indentation, 1e3 * hypot(ip[0], ip[1]),
-               atan2(ip[1], ip[0]) * 180 / M_PI, 1e3 * ip[2]);
+               atan2(ip[1], ip[0]) * 180 / M_PI, 1e3 * ip[2], next);
       }
       else
         sa_log(SA_LOG_INFO, "dem", "coupling iteration %d: overlap %.3g of the diameter (%s, "
-               "grain at (%.2f, %.2f, %.2f) mm) above [dem] max_overlap = %g: not accepted, the "
-               "FEM's wall is tried next", it + 1, ov, with, at[0] * 1e3, at[1] * 1e3,
-               at[2] * 1e3, g->sc->dem.max_overlap);
+               "grain at (%.2f, %.2f, %.2f) mm) above [dem] max_overlap = %g: not accepted, %s",
+               it + 1, ov, with, at[0] * 1e3, at[1] * 1e3, at[2] * 1e3, g->sc->dem.max_overlap,
+               next);
+      g->it_overlap++;
+      if (last) {
+        refused_last = 1;
+        break;
+      }
       dem_iqn_clear(g->iqn);
       memcpy(g->x_next, g->xw_cur, bytes);
       if (dem_iqn_limit_step(g->x_try, g->x_next, n3, L) < 1) g->it_limited++;
       memcpy(g->x_try, g->x_next, bytes);
-      g->it_overlap++;
       continue;
     }
+    if (last) break;
     if (res <= cc->iteration_tol) {
       if (r_rel <= RESIDUAL_GUARD * cc->iteration_tol) break;
       /* a small update with a large residual: the secant model (with columns of earlier
@@ -994,7 +1004,8 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
   }
   /* Not converged and the step may still be halved: back to the step's start (DEM, FEM, the
    * wall's last motion for the extrapolation) and let the caller do it as two half steps */
-  if (can_cut && (r_last > RESIDUAL_GUARD * cc->iteration_tol || res > cc->iteration_tol)) {
+  if (can_cut &&
+      (refused_last || r_last > RESIDUAL_GUARD * cc->iteration_tol || res > cc->iteration_tol)) {
     double t_cut = sa_time_now();
     SA_CHECK(dem_reload(g, ck, z_start));
     SA_CHECK(fem_solver_rollback(g->s, g->snap));
@@ -1006,7 +1017,8 @@ static int coupling_step_iterated(Run *g, double z0, double v0, double v1, doubl
     dem_iqn_clear(g->iqn); /* a model of the step that failed */
     sa_log(SA_LOG_INFO, "dem", "coupling step from piston displacement %.4f mm (%.4g ms) not "
            "converged in %d passes (quasi-Newton update %.3g, residual %.3g of the grains' wall "
-           "displacement): halved", (g->z_contact - z0) * 1e3, T * 1e3, it + 1, res, r_last);
+           "displacement%s): halved", (g->z_contact - z0) * 1e3, T * 1e3, it + 1, res, r_last,
+           refused_last ? "; its last pass refused" : "");
     g->it_cuts++;
     *cut = 1;
     return 0;
