@@ -80,6 +80,36 @@ static inline int cu_concat(int nm, FemMesh *const *ms, const char *const *names
   return 0;
 }
 
+/* The contact patch test's two blocks (test_contact_patch.c, test_contact_patch_tet10.c): an
+ * a x a x a block (4 x 4 x 3 cells, 3 x 3 x 2 when matching) on an a x a x a block below z = 0
+ * (3 x 3 x 2 cells), elements of the given order, in one mesh [out, smesh_free] (regions upper,
+ * lower; surfaces xu0 xu1 yu0 yu1 ubot top and xl0 xl1 yl0 yl1 base ltop), and a solver [out]
+ * with material (E, nu) in both, the given rtol, rollers on x = 0 and y = 0 of each block and
+ * the base held in z. */
+static inline int cu_patch_setup(int order, int matching, double a, double E, double nu,
+                                 double rtol, FemMesh **m, FemSolver **s) {
+  FemMesh *mb[2] = {NULL, NULL};
+  CuBox up = {{0, 0, 0}, {a, a, a}}, lo = {{0, 0, -a}, {a, a, 0}};
+  SmeshBlock bu = {{4, 4, 3}, cu_map_box, &up, {"xu0", "xu1", "yu0", "yu1", "ubot", "top"}};
+  SmeshBlock bl = {{3, 3, 2}, cu_map_box, &lo, {"xl0", "xl1", "yl0", "yl1", "base", "ltop"}};
+  if (matching) memcpy(bu.n, bl.n, sizeof bu.n);
+  const char *names[2] = {"upper", "lower"};
+  int rc = smesh_build(1, &bu, order, 1e-12, &mb[0]) || smesh_build(1, &bl, order, 1e-12, &mb[1]) ||
+           cu_concat(2, mb, names, m);
+  smesh_free(&mb[0]);
+  smesh_free(&mb[1]);
+  if (rc) return -1;
+  FemMaterial mats[2] = {fem_material_from_e_nu(E, nu, 1000), fem_material_from_e_nu(E, nu, 1000)};
+  FemSolverParams prm = fem_solver_params_default();
+  prm.rtol = rtol;
+  if (fem_solver_create(*m, mats, &prm, s)) return -1;
+  const char *fx[2] = {"xu0", "xl0"}, *fy[2] = {"yu0", "yl0"};
+  for (int k = 0; k < 2; k++)
+    if (fem_solver_fix_surface(*s, fx[k], FEM_X) || fem_solver_fix_surface(*s, fy[k], FEM_Y))
+      return -1;
+  return fem_solver_fix_surface(*s, "base", FEM_Z);
+}
+
 /* Nodal forces of a uniform traction t [in] 3 on surface S (tri3: a third of each face's
  * area to each corner; consistent for a linear field): f [out] 3 * S->nnodes in the order of
  * S->nodes. */

@@ -42,25 +42,9 @@ static const double E = 1e6, NU = 0.3, A = 0.01, P = 10.0;
 /* variant 0: fine (upper) slave on coarse master; 1: coarse (lower) slave on fine master;
  * 2: two-pass (both, each with half the penalty: the interface stiffness of one pass). */
 static int patch(int variant, double alpha_in, double *err_tn, double *err_szz, double *err_sxx, double *err_F) {
-  FemMesh *mb[2] = {NULL, NULL}, *m = NULL;
-  CuBox up = {{0, 0, 0}, {A, A, A}}, lo = {{0, 0, -A}, {A, A, 0}};
-  SmeshBlock bu = {{4, 4, 3}, cu_map_box, &up, {"xu0", "xu1", "yu0", "yu1", "ubot", "top"}};
-  SmeshBlock bl = {{3, 3, 2}, cu_map_box, &lo, {"xl0", "xl1", "yl0", "yl1", "base", "ltop"}};
-  TU_CHECK(smesh_build(1, &bu, 1, 1e-12, &mb[0]));
-  TU_CHECK(smesh_build(1, &bl, 1, 1e-12, &mb[1]));
-  const char *names[2] = {"upper", "lower"};
-  TU_CHECK(cu_concat(2, mb, names, &m));
-  FemMaterial mats[2] = {fem_material_from_e_nu(E, NU, 1000), fem_material_from_e_nu(E, NU, 1000)};
-  FemSolverParams prm = fem_solver_params_default();
-  prm.rtol = 1e-10;
+  FemMesh *m = NULL;
   FemSolver *s;
-  TU_CHECK(fem_solver_create(m, mats, &prm, &s));
-  const char *fx[2] = {"xu0", "xl0"}, *fy[2] = {"yu0", "yl0"};
-  for (int k = 0; k < 2; k++) {
-    TU_CHECK(fem_solver_fix_surface(s, fx[k], FEM_X));
-    TU_CHECK(fem_solver_fix_surface(s, fy[k], FEM_Y));
-  }
-  TU_CHECK(fem_solver_fix_surface(s, "base", FEM_Z));
+  TU_CHECK(cu_patch_setup(1, 0, A, E, NU, 1e-10, &m, &s));
   double h = A / 4;
   FemContactParams cp = fem_contact_params_default();
   double alpha = alpha_in > 0 ? alpha_in : getenv("PATCH_ALPHA") ? atof(getenv("PATCH_ALPHA")) : 10.0;
@@ -116,8 +100,6 @@ static int patch(int variant, double alpha_in, double *err_tn, double *err_szz, 
   fem_solver_destroy(&s);
   for (int k = 0; k < nc; k++) fem_contact_destroy(&c[k]);
   smesh_free(&m);
-  smesh_free(&mb[0]);
-  smesh_free(&mb[1]);
   return 0;
 }
 

@@ -102,26 +102,9 @@ static void top_load(const FemMesh *m, const FemSurface *S, double *f) {
  * failed one is rolled back to the last converged state, which drops its update). */
 static int patch(int order, int matching, int variant, double alpha, int weights, int mq,
                  int n_aug, PatchOut *o) {
-  FemMesh *mb[2] = {NULL, NULL}, *m = NULL;
-  CuBox up = {{0, 0, 0}, {A, A, A}}, lo = {{0, 0, -A}, {A, A, 0}};
-  SmeshBlock bu = {{4, 4, 3}, cu_map_box, &up, {"xu0", "xu1", "yu0", "yu1", "ubot", "top"}};
-  SmeshBlock bl = {{3, 3, 2}, cu_map_box, &lo, {"xl0", "xl1", "yl0", "yl1", "base", "ltop"}};
-  if (matching) memcpy(bu.n, bl.n, sizeof bu.n);
-  TU_CHECK(smesh_build(1, &bu, order, 1e-12, &mb[0]));
-  TU_CHECK(smesh_build(1, &bl, order, 1e-12, &mb[1]));
-  const char *names[2] = {"upper", "lower"};
-  TU_CHECK(cu_concat(2, mb, names, &m));
-  FemMaterial mats[2] = {fem_material_from_e_nu(E, NU, 1000), fem_material_from_e_nu(E, NU, 1000)};
-  FemSolverParams prm = fem_solver_params_default();
-  prm.rtol = 1e-10;
+  FemMesh *m = NULL;
   FemSolver *s;
-  TU_CHECK(fem_solver_create(m, mats, &prm, &s));
-  const char *fx[2] = {"xu0", "xl0"}, *fy[2] = {"yu0", "yl0"};
-  for (int k = 0; k < 2; k++) {
-    TU_CHECK(fem_solver_fix_surface(s, fx[k], FEM_X));
-    TU_CHECK(fem_solver_fix_surface(s, fy[k], FEM_Y));
-  }
-  TU_CHECK(fem_solver_fix_surface(s, "base", FEM_Z));
+  TU_CHECK(cu_patch_setup(order, matching, A, E, NU, 1e-10, &m, &s));
   double h = A / 4; /* the penalty scale of test_contact_patch.c, whatever the mesh */
   FemContactParams cp = fem_contact_params_default();
   cp.penalty = alpha * E / h * (variant == 2 ? 0.5 : 1.0);
@@ -244,8 +227,6 @@ static int patch(int order, int matching, int variant, double alpha, int weights
   fem_solver_destroy(&s);
   for (int k = 0; k < nc; k++) fem_contact_destroy(&c[k]);
   smesh_free(&m);
-  smesh_free(&mb[0]);
-  smesh_free(&mb[1]);
   return 0;
 }
 
