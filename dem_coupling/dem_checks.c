@@ -7,11 +7,17 @@
 
 #include "sa_error.h"
 
+/* The closed surface: the wall's ntri triangles, then for each of its nedge open edges a -> b
+ * three closing triangles: the edge drawn straight up to the plane z = z_cap (vertices a', b':
+ * nverts + 2k, nverts + 2k + 1) and the cap's fan to its centre (vertex nverts + 2 nedge). The
+ * open edge need not be flat (with [dem] rigid_band it zig-zags along the band's lower edge): a
+ * fan straight from it would cut off the bore between its highest and lowest vertices. */
 struct DemBore {
-  int nverts, ntri, ncap; /* ntri wall triangles, then ncap cap triangles */
-  int *tri;               /* 3 * (ntri + ncap); cap triangles use vertex nverts (the centre) */
+  int nverts, ntri, nedge;
+  int *edge;   /* 2 * nedge: the open edges a -> b as the wall's triangles run them */
+  int *tri;    /* 3 * (ntri + 3 nedge) */
   double r_barrel;
-  double *xyz;            /* 3 * (nverts + 1) work copy with the cap centre */
+  double *xyz; /* 3 * (nverts + 2 nedge + 1) work copy with the closing vertices */
 };
 
 /* Triangle (a, b, c) solid angle seen from p (van Oosterom & Strackee). */
@@ -66,21 +72,27 @@ int dem_bore_create(int nverts, const int *tri, int ntri, double r_barrel, DemBo
   }
   DemBore *b;
   SA_CALLOC(b, 1);
-  b->nverts = nverts, b->ntri = ntri, b->ncap = ncap, b->r_barrel = r_barrel;
-  b->tri = malloc(sizeof(int) * 3 * (size_t)(ntri + ncap));
-  b->xyz = malloc(sizeof(double) * 3 * (size_t)(nverts + 1));
-  if (!b->tri || !b->xyz) {
+  b->nverts = nverts, b->ntri = ntri, b->nedge = ncap, b->r_barrel = r_barrel;
+  b->edge = malloc(sizeof(int) * 2 * (size_t)(ncap > 0 ? ncap : 1));
+  b->tri = malloc(sizeof(int) * 3 * (size_t)(ntri + 3 * ncap));
+  b->xyz = malloc(sizeof(double) * 3 * (size_t)(nverts + 2 * ncap + 1));
+  if (!b->edge || !b->tri || !b->xyz) {
     free(e);
     dem_bore_destroy(&b);
     return SA_ERROR(SA_ERR_MEMORY, "bore");
   }
   memcpy(b->tri, tri, sizeof(int) * 3 * (size_t)ntri);
+  int centre = nverts + 2 * ncap;
   for (int k = 0; k < ncap; k++) {
-    /* the wall has the open edge as a->b; the cap uses b->a so the closed surface is
-     * consistently oriented */
+    /* the wall runs the open edge a -> b; the closing surface runs it b -> a, then up, across
+     * the cap and down, so the closed surface is consistently oriented */
     int a = e[3 * k + 2] > 0 ? e[3 * k] : e[3 * k + 1], bb = e[3 * k + 2] > 0 ? e[3 * k + 1] : e[3 * k];
-    int *c = b->tri + 3 * (ntri + k);
-    c[0] = bb, c[1] = a, c[2] = nverts;
+    int a_up = nverts + 2 * k, b_up = a_up + 1;
+    b->edge[2 * k] = a, b->edge[2 * k + 1] = bb;
+    int *c = b->tri + 3 * (ntri + 3 * k);
+    c[0] = bb, c[1] = a, c[2] = a_up;
+    c[3] = bb, c[4] = a_up, c[5] = b_up;
+    c[6] = b_up, c[7] = a_up, c[8] = centre;
   }
   free(e);
   *out = b;
@@ -91,11 +103,20 @@ int dem_bore_count_outside(const DemBore *b, const double *xw, int n, const doub
                            int *first) {
   DemBore *w = (DemBore *)b; /* work copy of the vertices; not shared between threads */
   memcpy(w->xyz, xw, sizeof(double) * 3 * (size_t)b->nverts);
-  /* cap centre: mean of the open-edge vertices */
+  /* the cap: the plane through the open edge's highest vertex (and no lower than z = 0, the
+   * barrel's), centred on the edge's vertices */
   double c[3] = {0, 0, 0};
-  for (int k = 0; k < b->ncap; k++)
-    for (int d = 0; d < 3; d++) c[d] += xw[3 * b->tri[3 * (b->ntri + k)] + d] / b->ncap;
-  memcpy(w->xyz + 3 * b->nverts, c, sizeof c);
+  for (int k = 0; k < b->nedge; k++) {
+    const double *a = xw + 3 * b->edge[2 * k];
+    c[0] += a[0] / b->nedge, c[1] += a[1] / b->nedge, c[2] = fmax(c[2], a[2]);
+  }
+  for (int k = 0; k < b->nedge; k++)
+    for (int j = 0; j < 2; j++) {
+      double *up = w->xyz + 3 * (b->nverts + 2 * k + j);
+      memcpy(up, xw + 3 * b->edge[2 * k + j], sizeof(double) * 2);
+      up[2] = c[2];
+    }
+  memcpy(w->xyz + 3 * (b->nverts + 2 * b->nedge), c, sizeof c);
   int bad = 0;
   if (first) *first = -1;
   for (int i = 0; i < n; i++) {
@@ -104,7 +125,7 @@ int dem_bore_count_outside(const DemBore *b, const double *xw, int n, const doub
     if (p[2] >= c[2]) {
       out = hypot(p[0], p[1]) > b->r_barrel + tol;
     } else {
-      double wn = dem_winding_number(w->xyz, b->tri, b->ntri + b->ncap, p);
+      double wn = dem_winding_number(w->xyz, b->tri, b->ntri + 3 * b->nedge, p);
       out = fabs(wn) < 0.5;
     }
     if (out) {
@@ -117,6 +138,7 @@ int dem_bore_count_outside(const DemBore *b, const double *xw, int n, const doub
 
 void dem_bore_destroy(DemBore **b) {
   if (!b || !*b) return;
+  free((*b)->edge);
   free((*b)->tri);
   free((*b)->xyz);
   free(*b);

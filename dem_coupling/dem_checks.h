@@ -7,8 +7,10 @@
 typedef struct DemBore DemBore;
 
 /* The bore seen by the grains: the cavity wall triangles tri [in] 3*ntri over nverts vertices
- * (normals out of the solid, i.e. into the cavity), closed at z = 0 by a fan of triangles over
- * the wall's open top edge, and above z = 0 the barrel of radius r_barrel. *out [owned]. */
+ * (normals out of the solid, i.e. into the cavity), its open top edge (which may zig-zag, as
+ * the lower edge of [dem] rigid_band does) drawn straight up to a flat cap at the edge's highest
+ * vertex or z = 0, whichever is higher, and above that cap the barrel of radius r_barrel.
+ * *out [owned]. */
 int dem_bore_create(int nverts, const int *tri, int ntri, double r_barrel, DemBore **out);
 /* Count the grains whose centre is outside the bore: x [in] 3*n grain centres, xw [in]
  * 3*nverts current wall vertices; tol [m] slack on the barrel radius. For z < 0 the test is the
