@@ -229,6 +229,8 @@ int fem_solver_set_element_data(FemSolver *s, int ndata, const double *data);
  * q at q * nhist; e.g. the equivalent plastic strain of a plastic law), nhist [out]; NULL
  * before setup. */
 const double *fem_solver_history(const FemSolver *s, int e, int *nhist);
+/* The solver's copy of region r's material [borrowed]; NULL when r is out of range. */
+const FemMaterial *fem_solver_material(const FemSolver *s, int r);
 /* An initial state of element e: its history (committed and trial) becomes hist [in], laid out
  * as fem_solver_history returns it (e.g. a K0 stress of the Mohr-Coulomb fill, fem_fill.h).
  * After setup and before a solve; SA_ERR_INPUT when e is out of range or has no history. */

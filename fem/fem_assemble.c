@@ -411,7 +411,7 @@ int fem_asm_setup(FemSolver *s) {
     for (int a = 0; a < s->nen; a++)
       for (int k = 0; k < 3; k++) X[3 * a + k] = m->xyz[3 * c[a] + k];
     int r = m->region ? m->region[e] : 0;
-    fem_element_lumped_mass(m->etype, X, s->mats[r].rho, mm);
+    fem_element_lumped_mass_mat(m->etype, X, &s->mats[r], mm);
     for (int a = 0; a < s->nen; a++) as->mlump[c[a]] += mm[a];
   }
   return 0;
@@ -437,6 +437,12 @@ const double *fem_solver_history(const FemSolver *s, int e, int *nhist) {
   const FemMaterial *mt = &s->mats[s->m->region ? s->m->region[e] : 0];
   if (nhist) *nhist = mt->nhist;
   return s->as.hist_c + s->as.hoff[e];
+}
+
+const FemMaterial *fem_solver_material(const FemSolver *s, int r) {
+  if (!s) return NULL;
+  int nr = s->m->nregions > 0 ? s->m->nregions : 1;
+  return r >= 0 && r < nr ? &s->mats[r] : NULL;
 }
 
 int fem_solver_set_history(FemSolver *s, int e, const double *hist) {

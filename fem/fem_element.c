@@ -14,7 +14,9 @@
  * the law is symmetric.
  *
  * Quadrature: tet4 1 point; tet10 4 points (degree 2) when straight-sided, 8 points (degree 3)
- * when curved, see fem_kernel_quad.h for why.
+ * when curved, see fem_kernel_quad.h for why. Composite tet10 (FemMaterial.tet10_composite):
+ * point q is sub-tet q of composite_sub, G its tet4 gradients on its 4 nodes (zero for the
+ * other 6), w_q its volume; the sums above then run over each point's 4 nodes only (ElemGeom).
  *
  * Faces: x(r, s) = sum N_a x_a, t1 = x,r, t2 = x,s, n da = t1 x t2 dr ds, and
  *   dn_i/dx_bk = e_ikm (N_b,r t2_m - N_b,s t1_m). */
@@ -34,9 +36,26 @@ static const FemKqRule *tet_rule(FemElemType t, const double *X)
   return fem_kq_tet10_curved(X) ? &fem_kq_tet8 : &fem_kq_tet4;
 }
 
+static inline int is_composite(FemElemType t, const FemMaterial *mat)
+{
+  return t == FEM_TET10 && mat && mat->tet10_composite;
+}
+
+/* The composite tet10's sub-tets (local node numbers, VTK order; positive volume in a positive
+ * parent, 1/8 of the parent each when straight-sided): the 4 corner tets, then the inner
+ * octahedron split along its diagonal from mid-node 02 (6) to mid-node 13 (8). */
+static const int composite_sub[8][4] = {{0, 4, 6, 7}, {4, 1, 5, 8}, {6, 5, 2, 9}, {7, 8, 9, 3},
+                                        {6, 8, 4, 5}, {6, 8, 5, 9}, {6, 8, 9, 7}, {6, 8, 7, 4}};
+/* The same lists in ascending order (the symmetric tangent fills blocks b >= a only). */
+static const int composite_sorted[8][4] = {{0, 4, 6, 7}, {1, 4, 5, 8}, {2, 5, 6, 9}, {3, 7, 8, 9},
+                                           {4, 5, 6, 8}, {5, 6, 8, 9}, {6, 7, 8, 9}, {4, 6, 7, 8}};
+
 int fem_element_nqp(FemElemType t) { return t == FEM_TET4 ? 1 : 8; }
 
-int fem_element_nqp_used(FemElemType t, const double *X) { return tet_rule(t, X)->n; }
+int fem_element_nqp_used(FemElemType t, const double *X, const FemMaterial *mat)
+{
+  return is_composite(t, mat) ? 8 : tet_rule(t, X)->n;
+}
 
 /* Reference gradients G [out] and weight w [out] (rule weight x det dX/dxi) at point L.
  * Returns det dX/dxi; G and w are valid only when it is > 0. */
@@ -57,9 +76,53 @@ static double tet_geom(int nen, const double *X, const double L[4], double wref,
   return d;
 }
 
-#define TET_GEOM(nen, X, L, wref, G, w)                                                          \
+/* Reference geometry of one element at its quadrature points: G[q][a] the reference gradient
+ * of node a's function (zero for the 6 nodes outside a composite sub-tet), w[q] the weight,
+ * act[q][0..na[q]) the nodes with nonzero G (ascending). */
+typedef struct {
+  int nq, na[FEM_KQ_MAX_QP], act[FEM_KQ_MAX_QP][10];
+  double G[FEM_KQ_MAX_QP][10][3], w[FEM_KQ_MAX_QP];
+} ElemGeom;
+
+/* Fills g [out]; returns the smallest det dX/dxi (g valid only when it is > 0). Standard: the
+ * rule of tet_rule. Composite: point q is sub-tet q, whose linear functions have the constant
+ * gradients of a tet4 on its 4 nodes, weight = its volume. */
+static double elem_geom(FemElemType t, const double *X, const FemMaterial *mat, ElemGeom *g)
+{
+  const int nen = (int)t;
+  double dmin = INFINITY;
+  if (is_composite(t, mat)) {
+    static const double Lc[4] = {0.25, 0.25, 0.25, 0.25};
+    g->nq = 8;
+    for (int q = 0; q < 8; q++) {
+      double X4[12], G4[4][3];
+      for (int k = 0; k < 4; k++)
+        for (int i = 0; i < 3; i++) X4[3 * k + i] = X[3 * composite_sub[q][k] + i];
+      double d = tet_geom(4, X4, Lc, 1.0 / 6.0, G4, &g->w[q]);
+      if (!(d > 0)) return d;
+      dmin = fmin(dmin, d);
+      memset(g->G[q], 0, sizeof g->G[q]);
+      for (int k = 0; k < 4; k++) memcpy(g->G[q][composite_sub[q][k]], G4[k], sizeof G4[k]);
+      g->na[q] = 4;
+      memcpy(g->act[q], composite_sorted[q], sizeof composite_sorted[q]);
+    }
+    return dmin;
+  }
+  const FemKqRule *R = tet_rule(t, X);
+  g->nq = R->n;
+  for (int q = 0; q < R->n; q++) {
+    double d = tet_geom(nen, X, R->L[q], R->w[q], g->G[q], &g->w[q]);
+    if (!(d > 0)) return d;
+    dmin = fmin(dmin, d);
+    g->na[q] = nen;
+    for (int a = 0; a < nen; a++) g->act[q][a] = a;
+  }
+  return dmin;
+}
+
+#define ELEM_GEOM(t, X, mat, g)                                                                  \
   do {                                                                                         \
-    double d_ = tet_geom(nen, X, L, wref, G, w);                                               \
+    double d_ = elem_geom(t, X, mat, g);                                                       \
     SA_REQUIRE(d_ > 0, SA_ERR_INPUT, "degenerate or inverted reference element (det J = %g)", d_); \
   } while (0)
 
@@ -95,12 +158,12 @@ int fem_element_tl_ctx(FemElemType t, const double *X, const double *x, const Fe
 {
   FemLawCtx lc = ctx ? *ctx : (FemLawCtx){0.0, 0.0, -1, -1, NULL};
   const int nen = (int)t, ndof = 3 * nen, nh = mat->nhist;
-  const FemKqRule *R = tet_rule(t, X);
-  const int nq = R->n;
-  double G[FEM_KQ_MAX_QP][10][3], wq[FEM_KQ_MAX_QP], Fq[FEM_KQ_MAX_QP][9], Jq[FEM_KQ_MAX_QP];
+  ElemGeom g;
+  ELEM_GEOM(t, X, mat, &g);
+  const int nq = g.nq;
+  double(*G)[10][3] = g.G, *wq = g.w, Fq[FEM_KQ_MAX_QP][9], Jq[FEM_KQ_MAX_QP];
   double V = 0, v = 0, minJ = INFINITY;
   for (int q = 0; q < nq; q++) {
-    TET_GEOM(nen, X, R->L[q], R->w[q], G[q], &wq[q]);
     def_grad(nen, x, (const double(*)[3])G[q], Fq[q]);
     Jq[q] = fem_kt_det(Fq[q]);
     if (Jq[q] < minJ) minJ = Jq[q];
@@ -137,7 +200,9 @@ int fem_element_tl_ctx(FemElemType t, const double *X, const double *x, const Fe
       H[i] = cof[i] * iJ;
       P[i] = w * (P[i] + pq * cof[i]);
     }
-    for (int a = 0; a < nen; a++) {
+    const int na = g.na[q], *act = g.act[q];
+    for (int ia = 0; ia < na; ia++) {
+      const int a = act[ia];
       const double *Ga = Gq[a];
       for (int i = 0; i < 3; i++) {
         const double *Pi = P + 3 * i, *ci = cof + 3 * i;
@@ -155,14 +220,16 @@ int fem_element_tl_ctx(FemElemType t, const double *X, const double *x, const Fe
             Ar[3 * k + L] = w * (Ar[3 * k + L] + cr * H[3 * k + L] + cs * cof[3 * k + L] -
                                  pq * cof[3 * i + L] * H[3 * k + J]);
       }
-    for (int a = 0; a < nen; a++) {
+    for (int ia = 0; ia < na; ia++) {
+      const int a = act[ia];
       const double *Ga = Gq[a];
       double T[3][9];
       for (int i = 0; i < 3; i++) {
         const double *A0 = A + 9 * (3 * i), *A1 = A0 + 9, *A2 = A0 + 18;
         for (int c = 0; c < 9; c++) T[i][c] = Ga[0] * A0[c] + Ga[1] * A1[c] + Ga[2] * A2[c];
       }
-      for (int b = sym ? a : 0; b < nen; b++) {
+      for (int ib = sym ? ia : 0; ib < na; ib++) {
+        const int b = act[ib];
         const double *Gb = Gq[b];
         for (int i = 0; i < 3; i++) {
           double *Kr = Ke + (3 * a + i) * ndof + 3 * b;
@@ -192,12 +259,13 @@ int fem_element_stress(FemElemType t, const double *X, const double *x, const Fe
                        const double *hist, double sigma[9], double lam[3])
 {
   const int nen = (int)t, nh = mat->nhist;
-  const FemKqRule *R = tet_rule(t, X);
-  double G[FEM_KQ_MAX_QP][10][3], wq[FEM_KQ_MAX_QP], Fq[FEM_KQ_MAX_QP][9], Jq[FEM_KQ_MAX_QP];
+  ElemGeom g;
+  ELEM_GEOM(t, X, mat, &g);
+  const int nq = g.nq;
+  double *wq = g.w, Fq[FEM_KQ_MAX_QP][9], Jq[FEM_KQ_MAX_QP];
   double V = 0, v = 0, Fa[9] = {0}, scratch[FEM_MAT_MAX_HIST];
-  for (int q = 0; q < R->n; q++) {
-    TET_GEOM(nen, X, R->L[q], R->w[q], G[q], &wq[q]);
-    def_grad(nen, x, (const double(*)[3])G[q], Fq[q]);
+  for (int q = 0; q < nq; q++) {
+    def_grad(nen, x, (const double(*)[3])g.G[q], Fq[q]);
     Jq[q] = fem_kt_det(Fq[q]);
     SA_REQUIRE(Jq[q] > 0, SA_ERR_INVERTED, "inverted element: det F = %g", Jq[q]);
     V += wq[q];
@@ -209,7 +277,7 @@ int fem_element_stress(FemElemType t, const double *X, const double *x, const Fe
   /* sigma = (1/v) int sigma dv = (1/v) sum_q w_q Pt_q F_q^T; the volumetric part gives
    * p = U'(theta) + ks (1/v) sum_q w_q J_q (J_q - theta). */
   for (int i = 0; i < 9; i++) sigma[i] = 0;
-  for (int q = 0; q < R->n; q++) {
+  for (int q = 0; q < nq; q++) {
     double W, P[9];
     FemLawCtx lc = {0.0, 0.0, -1, q, NULL};
     SA_CHECK(law_eval(mat, &lc, Fq[q], nh ? hist + q * nh : NULL, nh ? scratch : NULL, &W, P,
@@ -222,7 +290,7 @@ int fem_element_stress(FemElemType t, const double *X, const double *x, const Fe
       }
   }
   double pv = 0;
-  for (int q = 0; q < R->n; q++) pv += wq[q] * Jq[q] * (Jq[q] - theta);
+  for (int q = 0; q < nq; q++) pv += wq[q] * Jq[q] * (Jq[q] - theta);
   for (int i = 0; i < 3; i++) sigma[4 * i] += dU + ks * pv / v;
   /* Principal stretches of the volume-averaged F, rescaled so that det F = theta (the element's
    * volume ratio in the mixed formulation); exact for a homogeneous deformation. */
@@ -239,6 +307,21 @@ int fem_element_stress(FemElemType t, const double *X, const double *x, const Fe
   fem_kt_sym_eig(C, ev);
   for (int i = 0; i < 3; i++) lam[i] = sqrt(fmax(ev[i], 0));
   return 0;
+}
+
+void fem_element_lumped_mass_mat(FemElemType t, const double *X, const FemMaterial *mat,
+                                 double *m)
+{
+  if (!is_composite(t, mat)) {
+    fem_element_lumped_mass(t, X, mat->rho, m);
+    return;
+  }
+  /* composite: each sub-tet's mass rho V_q / 4 to its corners (its linear functions' row sums) */
+  ElemGeom g;
+  for (int a = 0; a < 10; a++) m[a] = 0;
+  if (!(elem_geom(t, X, mat, &g) > 0)) return; /* degenerate: fem_mesh_check reports it */
+  for (int q = 0; q < 8; q++)
+    for (int k = 0; k < 4; k++) m[composite_sub[q][k]] += 0.25 * mat->rho * g.w[q];
 }
 
 void fem_element_lumped_mass(FemElemType t, const double *X, double rho, double *m)

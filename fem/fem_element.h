@@ -22,6 +22,20 @@
  * off its edge midpoint) 8 points (degree 3), because grad N det J0 is then cubic and the
  * 4-point rule would fail the patch test (see fem_kernel_quad.h).
  *
+ * Composite tet10 (FemMaterial.tet10_composite; the idea of Abaqus's C3D10M): the same 10
+ * nodes, but the interpolation (of X and of x) is piecewise LINEAR over 8 sub-tets: the 4
+ * corner tets and the inner octahedron split along the diagonal mid-node 02 - mid-node 13
+ * (composite_sub in fem_element.c). F is constant in each sub-tet, so quadrature point q is
+ * sub-tet q (weight its volume; 8 points = fem_element_nqp(FEM_TET10), the history stride).
+ * Each face is then 4 flat sub-triangles with linear functions, whose consistent load under a
+ * uniform pressure is exactly the node-to-surface contact's lumped slave areas (corners A/12,
+ * mid-nodes A/4), unlike the quadratic face's (corners 0, mid-nodes A/3): a composite body
+ * passes the contact patch test with the default weights (docs/mohr_coulomb.md). It is a
+ * displacement element in substance (linear sub-tets): meant for compressible regions (the
+ * Mohr-Coulomb fill, nu = 0.3), not the near-incompressible silicone, which would lock; the
+ * mixed terms above apply to it unchanged (theta over the whole element). Mid-nodes off
+ * their edge midpoints only bend the sub-tets' faces into planes through them.
+ *
  * Surface elements (tri3/tri6 faces, normal out of the solid): follower pressure and the
  * volume enclosed between a face and the origin (for cavity volume and volume control). */
 #ifndef FEM_ELEMENT_H
@@ -56,8 +70,9 @@ int fem_element_tl_ctx(FemElemType t, const double *X, const double *x, const Fe
 /* Quadrature points per element to allocate history for (the stride of hist_old/hist_new per
  * element): 1 for tet4, 8 for tet10 (straight-sided tet10 use only the first 4). */
 int fem_element_nqp(FemElemType t);
-/* Quadrature points an element with reference coordinates X [in] actually uses (1, 4 or 8). */
-int fem_element_nqp_used(FemElemType t, const double *X);
+/* Quadrature points an element with reference coordinates X [in] and material mat [in, may
+ * be NULL: quadratic tet10] actually uses (1, 4 or 8; 8 for a composite tet10). */
+int fem_element_nqp_used(FemElemType t, const double *X, const FemMaterial *mat);
 
 /* Element-averaged Cauchy stress sigma [out] 9 (current-volume average, (1/v) int sigma dv,
  * including the mixed formulation's pressure) and principal stretches lam [out] 3 (descending)
@@ -70,6 +85,12 @@ int fem_element_stress(FemElemType t, const double *X, const double *x, const Fe
  * the element mass; straight tet10: rho V/36 per corner, 4 rho V/27 per mid-node; all positive,
  * unlike the row sum, which is negative at the corners). */
 void fem_element_lumped_mass(FemElemType t, const double *X, double rho, double *m);
+/* The same for an element of material mat [in] (density mat->rho): a composite tet10 gets
+ * each sub-tet's mass rho V_q / 4 at each of its 4 nodes (all positive, sum rho V; straight:
+ * rho V/32 per corner, rho V/8 per mid-node, 3 rho V/16 at the two on the octahedron's
+ * diagonal); otherwise fem_element_lumped_mass. */
+void fem_element_lumped_mass_mat(FemElemType t, const double *X, const FemMaterial *mat,
+                                 double *m);
 
 /* Follower pressure p on one face in the current configuration x [in] 3*nfn (normal out of the
  * solid): the external force on the solid is f = -p int N n da. fe [out] 3*nfn receives f;

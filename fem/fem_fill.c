@@ -71,7 +71,8 @@ void fem_fill_history_mean(const FemSolver *s, int k, double *out) {
     double X[30];
     for (int a = 0; a < m->nen; a++)
       for (int i = 0; i < 3; i++) X[3 * a + i] = m->xyz[3 * m->conn[(size_t)e * m->nen + a] + i];
-    int nq = fem_element_nqp_used(m->etype, X);
+    int nq = fem_element_nqp_used(m->etype, X,
+                                  fem_solver_material(s, m->region ? m->region[e] : 0));
     double sum = 0;
     for (int q = 0; h && k < nh && q < nq; q++) sum += h[q * nh + k];
     out[e] = h && k < nh ? sum / nq : 0.0;

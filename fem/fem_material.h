@@ -46,6 +46,9 @@ typedef struct {
                                 kappa_s = 0 (pure mean dilatation); see fem_element.h */
   int nhist;                 /* history variables per quadrature point (0 for hyperelastic),
                                 at most FEM_MAT_MAX_HIST */
+  int tet10_composite;       /* 1: a tet10 of this region is the composite element (piecewise
+                                linear over 8 sub-tets, fem_element.h); 0: quadratic. No
+                                effect on tet4 */
 } FemMaterial;
 
 #define FEM_MAT_MAX_HIST 32

@@ -72,6 +72,7 @@
 typedef struct {
   char fill_geo[SA_STR_MAX], wall_surface[SA_STR_MAX], fixed_surface[SA_STR_MAX];
   char tip_surface[SA_STR_MAX], initial_stress[SA_STR_MAX], slave_weights[SA_STR_MAX];
+  char fill_element[SA_STR_MAX];
   double fill_h, fill_height, barrel_length, stroke, penalty, penalty_tangent, augment_tol;
   double k0_ratio;
   int n_steps, max_cuts, vtk_every, gravity, smooth_normals, augment;
@@ -115,6 +116,12 @@ static const SaParam mc_params[] = {
      "the fill's contact areas per node on tri6 faces (tet10 fill): lumped = corners 1/12, "
      "mid-nodes 1/4 of a face; consistent = corners 0, mid-nodes 1/3, which a uniform pressure "
      "needs (tet10 patch test, docs/contact.md), but leaves the corners free to penetrate"},
+    {"fill_element", SA_PARAM_CHOICE, P(fill_element), "-", "composite", 0, 0, 0,
+     "composite|quadratic",
+     "the fill's tet10 ([mesh] order = 2): composite = piecewise linear over 8 sub-tets, whose "
+     "faces the lumped slave_weights load exactly (passes the tet10 contact patch test); "
+     "quadratic = the silicone's element, which fails that test with the lumped weights "
+     "(docs/mohr_coulomb.md)"},
     {"gravity", SA_PARAM_BOOL, P(gravity), "-", "1", 0, 0, 0, NULL,
      "geostatic stage: gravity (-z, 9.81 m/s^2) on every body before the stroke"},
     {"initial_stress", SA_PARAM_CHOICE, P(initial_stress), "-", "none", 0, 0, 0, "none|k0",
@@ -568,6 +575,13 @@ static int build(Mc *o) {
   }
   if (!rc) rc = fem_actuator_materials(&sc->act, o->m, mats);
   if (!rc) rc = fem_fill_material(&sc->fill, &mats[nact]);
+  if (!rc && sc->act.mesh.order == 2 && !strcmp(P->fill_element, "composite")) {
+    mats[nact].tet10_composite = 1;
+    if (!strcmp(P->slave_weights, "consistent"))
+      sa_log(SA_LOG_WARN, "mc", "fill_element = composite with slave_weights = consistent: a "
+             "composite face's consistent loads are the lumped weights (corners 1/12, mid-nodes "
+             "1/4); the consistent (quadratic) ones leave its corners without contact force");
+  }
   if (!rc) rc = fem_mesh_append(o->m, fill);
   fem_mesh_destroy(&fill);
   o->fill_region = nact;

@@ -9,11 +9,18 @@
  * ~eps |f| / h, both < 1e-8 of the largest entry; rtol 1e-6 leaves margin. Also checked: Ke
  * symmetric, rigid-body invariance (fe sums to zero, Ke annihilates translations), the
  * stress-free reference gives fe = 0 and theta = 1, inversion returns SA_ERR_INVERTED and a
- * degenerate reference element SA_ERR_INPUT. */
+ * degenerate reference element SA_ERR_INPUT.
+ * The composite tet10 (FemMaterial.tet10_composite, piecewise linear over 8 sub-tets) gets the
+ * same checks for every law, straight and curved, and a Mohr-Coulomb (law object, FEM_LAW_FULL)
+ * check in a yielding state: Ke against central differences of fe at fixed history (the law is
+ * path dependent and non-associated, so no energy check and no symmetry), h = 1e-7, rtol 1e-6 of
+ * max |Ke| (the law's own FD test holds 1e-6 at h = 1e-6; states within ~h of a change of
+ * return region are skipped by retrying with another draw). */
 #include <stdio.h>
 #include <string.h>
 
 #include "fem_element.h"
+#include "fem_mohr_coulomb.h"
 #include "sa_error.h"
 #include "kt_util.h"
 
@@ -92,6 +99,73 @@ static void check(const char *name, FemElemType t, double curve, const FemMateri
   sa_error_clear();
 }
 
+/* Composite tet10 with the Mohr-Coulomb law: a compressed, sheared element from a virgin state,
+ * yielding at every sub-tet (cohesion 1e-3 E, phi 30, psi 10). */
+static void check_mc_composite(double curve)
+{
+  const char *nm[] = {"young", "poisson", "friction_angle", "cohesion", "dilation_angle"};
+  double v[] = {1.0, 0.3, 30, 1e-3, 10};
+  FemMaterial m;
+  if (fem_material_from_law("mohr_coulomb", 5, nm, v, 1, &m)) {
+    fprintf(stderr, "mohr_coulomb material: %s\n", sa_error_message());
+    kt_fail++;
+    return;
+  }
+  m.tet10_composite = 1;
+  FemMohrCoulomb p = {1.0, 0.3, 30 * 3.14159265358979323846 / 180, 1e-3,
+                      10 * 3.14159265358979323846 / 180};
+  double hold[8 * FEM_MC_NHIST], hnew[8 * FEM_MC_NHIST], hs[8 * FEM_MC_NHIST];
+  for (int q = 0; q < 8; q++) fem_mc_hist_init(&p, NULL, hold + q * FEM_MC_NHIST);
+  char what[200];
+  int done = 0;
+  for (int trial = 0; trial < 12 && done < 3; trial++) {
+    double X[30], x[30], F0[9];
+    kt_random_tet(10, 0.2, curve, X);
+    kt_random_F(0.05, 1, F0);
+    for (int i = 0; i < 3; i++) F0[6 + i] *= 0.97; /* 3 % vertical compression */
+    for (int a = 0; a < 10; a++)
+      for (int i = 0; i < 3; i++)
+        x[3 * a + i] = F0[3 * i] * X[3 * a] + F0[3 * i + 1] * X[3 * a + 1] +
+                       F0[3 * i + 2] * X[3 * a + 2] + kt_rand(-0.005, 0.005);
+    if (fem_element_tl(FEM_TET10, X, x, &m, hold, hnew, 1, &out)) {
+      fprintf(stderr, "MC composite: fem_element_tl failed: %s\n", sa_error_message());
+      kt_fail++;
+      sa_error_clear();
+      return;
+    }
+    int nyield = 0;
+    for (int q = 0; q < 8; q++) nyield += hnew[q * FEM_MC_NHIST + 7] != FEM_MC_ELASTIC;
+    /* the perturbed states must return to the same regions (FD across a kink is meaningless) */
+    const int nd = 30;
+    double h = 1e-7, Kmax = kt_maxabs(out.Ke, nd * nd), Kfd[900];
+    int kink = 0;
+    for (int c = 0; c < nd && !kink; c++) {
+      double xs = x[c];
+      x[c] = xs + h;
+      fem_element_tl(FEM_TET10, X, x, &m, hold, hs, 0, &outp);
+      for (int q = 0; q < 8; q++) kink |= hs[q * FEM_MC_NHIST + 7] != hnew[q * FEM_MC_NHIST + 7];
+      x[c] = xs - h;
+      fem_element_tl(FEM_TET10, X, x, &m, hold, hs, 0, &outm);
+      for (int q = 0; q < 8; q++) kink |= hs[q * FEM_MC_NHIST + 7] != hnew[q * FEM_MC_NHIST + 7];
+      x[c] = xs;
+      for (int r = 0; r < nd; r++) Kfd[r * nd + c] = (outp.fe[r] - outm.fe[r]) / (2 * h);
+    }
+    if (kink || nyield < 8) continue;
+    for (int c = 0; c < nd; c++)
+      for (int r = 0; r < nd; r++) {
+        snprintf(what, sizeof what, "MC composite curve %g trial %d: Ke[%d][%d] vs FD of fe",
+                 curve, trial, r, c);
+        kt_close(what, out.Ke[r * nd + c], Kfd[r * nd + c], 1e-6 * Kmax, 0);
+      }
+    done++;
+  }
+  if (done < 3) {
+    fprintf(stderr, "MC composite curve %g: only %d of 12 draws yielded at all 8 points away from "
+            "a region change\n", curve, done);
+    kt_fail++;
+  }
+}
+
 int main(void)
 {
   const double mu = 1;
@@ -114,7 +188,15 @@ int main(void)
     check(name, FEM_TET10, 0, &laws[l]);
     snprintf(name, sizeof name, "tet10 curved %s", names[l]);
     check(name, FEM_TET10, 0.05, &laws[l]);
+    FemMaterial comp = laws[l];
+    comp.tet10_composite = 1;
+    snprintf(name, sizeof name, "tet10 composite straight %s", names[l]);
+    check(name, FEM_TET10, 0, &comp);
+    snprintf(name, sizeof name, "tet10 composite curved %s", names[l]);
+    check(name, FEM_TET10, 0.05, &comp);
   }
+  check_mc_composite(0);
+  check_mc_composite(0.05);
   /* Degenerate reference element (node 3 in the plane of 0, 1, 2): a mesh error, not numerical. */
   double Xd[30];
   kt_random_tet(10, 0, 0, Xd);

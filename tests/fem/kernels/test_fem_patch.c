@@ -6,11 +6,21 @@
  * F constant means constant P and theta = J in every element, so f_a = P int grad N_a dV, whose
  * sum over the patch vanishes for interior a when the rule integrates grad N det J0 exactly
  * (degree 1 for straight, 3 for curved tet10). Tolerance: 1e-11 of the largest nodal force
- * (round-off of sums of O(10) terms). Also: the net force on the patch is zero. */
+ * (round-off of sums of O(10) terms). Also: the net force on the patch is zero.
+ * Composite tet10 (FemMaterial.tet10_composite): the patch is then a conforming mesh of 96
+ * linear sub-tets (a face's 4 sub-triangles do not depend on the octahedron's diagonal), so
+ * interior forces vanish for straight and curved patches alike, and every element's stress
+ * (fem_element_stress) equals the law's Cauchy stress at F, computed directly from the law
+ * (independent reference: built-in laws sigma = P_iso F^T / J + U'(J) I, law objects P F^T / J),
+ * to 1e-12 of its largest component; also with the Mohr-Coulomb law (FEM_LAW_FULL) from a
+ * virgin history in a yielding state (F with 30 % random part: every point yields). */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "fem_element.h"
+#include "fem_law.h"
+#include "fem_mohr_coulomb.h"
 #include "sa_error.h"
 #include "kt_util.h"
 
@@ -31,6 +41,25 @@ static int mid_node(int a, int b, double curve)
   edges[nedge][0] = a, edges[nedge][1] = b, edges[nedge][2] = m;
   nedge++;
   return m;
+}
+
+/* The law's Cauchy stress sigma [out] at F [in] (history from hist [in] or none). */
+static void law_sigma(const FemMaterial *mat, const double F[9], const double *hist, double sg[9])
+{
+  double W, P[9], hn[FEM_MAT_MAX_HIST], J = kt_det3(F), dU = 0;
+  if (mat->law) {
+    FemLawCtx lc = {0.0, 0.0, -1, 0, NULL};
+    mat->law->eval(mat->par, &lc, F, hist, mat->nhist ? hn : NULL, &W, P, NULL);
+  } else {
+    fem_material_eval_iso(mat, F, NULL, NULL, &W, P, NULL);
+    fem_material_eval_vol(mat, J, NULL, &dU, NULL);
+  }
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      double v = 0;
+      for (int K = 0; K < 3; K++) v += P[3 * i + K] * F[3 * j + K];
+      sg[3 * i + j] = v / J + (i == j ? dU : 0);
+    }
 }
 
 static void patch(const FemMaterial *mat, double curve)
@@ -80,20 +109,46 @@ static void patch(const FemMaterial *mat, double curve)
     for (int i = 0; i < 3; i++)
       xn[3 * a + i] = F[3 * i] * Xn[3 * a] + F[3 * i + 1] * Xn[3 * a + 1] + F[3 * i + 2] * Xn[3 * a + 2] + off[i];
   static FemElemOut out;
+  char what[160];
+  const int comp = mat->tet10_composite, nh = mat->nhist;
+  double hold[8 * FEM_MAT_MAX_HIST], hnew[8 * FEM_MAT_MAX_HIST], sref[9];
+  if (nh) { /* the Mohr-Coulomb law: virgin points */
+    const double d = M_PI / 180;
+    FemMohrCoulomb p = {mat->par[0], mat->par[1], mat->par[2] * d, mat->par[3], mat->par[4] * d};
+    for (int q = 0; q < 8; q++) fem_mc_hist_init(&p, NULL, hold + q * nh);
+  }
+  law_sigma(mat, F, nh ? hold : NULL, sref);
   for (int e = 0; e < ne; e++) {
     double X[30], x[30];
     for (int a = 0; a < 10; a++)
       for (int k = 0; k < 3; k++) X[3 * a + k] = Xn[3 * conn[e][a] + k], x[3 * a + k] = xn[3 * conn[e][a] + k];
-    if (fem_element_tl(FEM_TET10, X, x, mat, NULL, NULL, 0, &out)) {
+    if (fem_element_tl(FEM_TET10, X, x, mat, nh ? hold : NULL, nh ? hnew : NULL, 0, &out)) {
       fprintf(stderr, "patch (curve %g): element %d failed: %s\n", curve, e, sa_error_message());
       kt_fail++;
       return;
     }
     for (int a = 0; a < 10; a++)
       for (int k = 0; k < 3; k++) f[3 * conn[e][a] + k] += out.fe[3 * a + k];
+    if (!comp) continue;
+    double sg[9], lam[3], smax = kt_maxabs(sref, 9);
+    if (fem_element_stress(FEM_TET10, X, x, mat, nh ? hold : NULL, sg, lam)) {
+      fprintf(stderr, "patch (composite, curve %g): stress of element %d failed: %s\n", curve, e,
+              sa_error_message());
+      kt_fail++;
+      return;
+    }
+    for (int i = 0; i < 9; i++) {
+      snprintf(what, sizeof what, "patch (composite, curve %g): element %d sigma[%d]", curve, e, i);
+      kt_close(what, sg[i], sref[i], 1e-12 * smax, 0);
+    }
+    for (int q = 0; nh && q < 8; q++)
+      if (hnew[q * nh + 7] == FEM_MC_ELASTIC) {
+        fprintf(stderr, "patch (composite MC, curve %g): element %d point %d did not yield\n",
+                curve, e, q);
+        kt_fail++;
+      }
   }
   double fmax = kt_maxabs(f, 3 * nnode), sum[3] = {0, 0, 0};
-  char what[160];
   if (fmax < 1e-3) {
     fprintf(stderr, "patch: no boundary forces (deformation too small to test)\n");
     kt_fail++;
@@ -104,7 +159,7 @@ static void patch(const FemMaterial *mat, double curve)
     if (!interior[a]) continue;
     ninterior++;
     for (int k = 0; k < 3; k++) {
-      snprintf(what, sizeof what, "patch (curve %g): interior node %d force %d", curve, a, k);
+      snprintf(what, sizeof what, "patch (%scurve %g): interior node %d force %d", comp ? "composite, " : "", curve, a, k);
       kt_close(what, f[3 * a + k], 0, 1e-11 * fmax, 0);
     }
   }
@@ -113,7 +168,7 @@ static void patch(const FemMaterial *mat, double curve)
     kt_fail++;
   }
   for (int k = 0; k < 3; k++) {
-    snprintf(what, sizeof what, "patch (curve %g): net force %d", curve, k);
+    snprintf(what, sizeof what, "patch (%scurve %g): net force %d", comp ? "composite, " : "", curve, k);
     kt_close(what, sum[k], 0, 1e-11 * fmax, 0);
   }
 }
@@ -128,6 +183,20 @@ int main(void)
     patch(&ye, 0.04);
     patch(&mr, 0.04);
   }
+  FemMaterial mc;
+  const char *nm[] = {"young", "poisson", "friction_angle", "cohesion", "dilation_angle"};
+  double v[] = {100.0, 0.3, 30, 0.1, 10};
+  if (fem_material_from_law("mohr_coulomb", 5, nm, v, 1, &mc)) {
+    fprintf(stderr, "mohr_coulomb material: %s\n", sa_error_message());
+    return 1;
+  }
+  ye.tet10_composite = mr.tet10_composite = mc.tet10_composite = 1;
+  for (int rep = 0; rep < 3; rep++)
+    for (int cv = 0; cv < 2; cv++) {
+      patch(&ye, 0.04 * cv);
+      patch(&mr, 0.04 * cv);
+      patch(&mc, 0.04 * cv);
+    }
   if (kt_fail) fprintf(stderr, "%d checks failed\n", kt_fail);
   return kt_fail != 0;
 }

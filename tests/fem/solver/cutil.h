@@ -84,10 +84,11 @@ static inline int cu_concat(int nm, FemMesh *const *ms, const char *const *names
  * a x a x a block (4 x 4 x 3 cells, 3 x 3 x 2 when matching) on an a x a x a block below z = 0
  * (3 x 3 x 2 cells), elements of the given order, in one mesh [out, smesh_free] (regions upper,
  * lower; surfaces xu0 xu1 yu0 yu1 ubot top and xl0 xl1 yl0 yl1 base ltop), and a solver [out]
- * with material (E, nu) in both, the given rtol, rollers on x = 0 and y = 0 of each block and
+ * with material (E, nu) in both (composite: tet10 as the composite element,
+ * FemMaterial.tet10_composite), the given rtol, rollers on x = 0 and y = 0 of each block and
  * the base held in z. */
-static inline int cu_patch_setup(int order, int matching, double a, double E, double nu,
-                                 double rtol, FemMesh **m, FemSolver **s) {
+static inline int cu_patch_setup(int order, int matching, int composite, double a, double E,
+                                 double nu, double rtol, FemMesh **m, FemSolver **s) {
   FemMesh *mb[2] = {NULL, NULL};
   CuBox up = {{0, 0, 0}, {a, a, a}}, lo = {{0, 0, -a}, {a, a, 0}};
   SmeshBlock bu = {{4, 4, 3}, cu_map_box, &up, {"xu0", "xu1", "yu0", "yu1", "ubot", "top"}};
@@ -100,6 +101,7 @@ static inline int cu_patch_setup(int order, int matching, double a, double E, do
   smesh_free(&mb[1]);
   if (rc) return -1;
   FemMaterial mats[2] = {fem_material_from_e_nu(E, nu, 1000), fem_material_from_e_nu(E, nu, 1000)};
+  mats[0].tet10_composite = mats[1].tet10_composite = composite;
   FemSolverParams prm = fem_solver_params_default();
   prm.rtol = rtol;
   if (fem_solver_create(*m, mats, &prm, s)) return -1;

@@ -44,7 +44,7 @@ static const double E = 1e6, NU = 0.3, A = 0.01, P = 10.0;
 static int patch(int variant, double alpha_in, double *err_tn, double *err_szz, double *err_sxx, double *err_F) {
   FemMesh *m = NULL;
   FemSolver *s;
-  TU_CHECK(cu_patch_setup(1, 0, A, E, NU, 1e-10, &m, &s));
+  TU_CHECK(cu_patch_setup(1, 0, 0, A, E, NU, 1e-10, &m, &s));
   double h = A / 4;
   FemContactParams cp = fem_contact_params_default();
   double alpha = alpha_in > 0 ? alpha_in : getenv("PATCH_ALPHA") ? atof(getenv("PATCH_ALPHA")) : 10.0;
