@@ -8,44 +8,27 @@
  * more from every facet, so the answer is unambiguous. A fan closing the zig-zag edge directly
  * (the check before stop 43) judged the points between the fan and the edge's highest vertex
  * outside: a grain 0.14 mm below the band stopped a run as "tunnelled". */
-#include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
-
 #include "dem_checks.h"
+#include "dem_test_util.h"
 
 #define NTH 48
 #define R 6e-3
 #define ZFLOOR (-80e-3)
 
-/* Cylinder wall of NTH facets around and nz rows from the floor up to the top edge (vertex j of
- * the top row at z_top(j)), plus a fan floor; triangles consistently oriented. */
+/* The wall: t_tube from the floor to z = -5 mm (20 rows), its top row then moved to z_top(j)
+ * (zig-zag: -5 / -7 mm by turns; flat: 0), closed below by a fan floor on the same vertices. */
 static int build(int zigzag, double **xyz, int **tri, int *nv) {
   const int nz = 20;
-  *nv = NTH * (nz + 1) + 1;
-  int nt = 2 * NTH * nz + NTH;
-  *xyz = malloc(sizeof(double) * 3 * (size_t)*nv);
-  *tri = malloc(sizeof(int) * 3 * (size_t)nt);
+  int nt;
+  t_tube(0, 0, R, ZFLOOR, -5e-3, NTH, nz, xyz, tri, nv, &nt);
+  *xyz = realloc(*xyz, sizeof(double) * 3 * (size_t)(*nv + 1));
+  *tri = realloc(*tri, sizeof(int) * 3 * (size_t)(nt + NTH));
   if (!*xyz || !*tri) exit(2);
-  for (int k = 0; k <= nz; k++)
-    for (int j = 0; j < NTH; j++) {
-      double th = 2 * M_PI * j / NTH, *p = *xyz + 3 * (k * NTH + j);
-      double ztop = zigzag ? (j % 2 ? -7e-3 : -5e-3) : 0;
-      double zk = k < nz ? ZFLOOR + (-9e-3 - ZFLOOR) * k / (nz - 1) : ztop;
-      p[0] = R * cos(th), p[1] = R * sin(th), p[2] = zk;
-    }
-  double *c = *xyz + 3 * (*nv - 1);
+  for (int j = 0; j < NTH; j++) (*xyz)[3 * (nz * NTH + j) + 2] = zigzag ? (j % 2 ? -7e-3 : -5e-3) : 0;
+  double *c = *xyz + 3 * (*nv)++;
   c[0] = 0, c[1] = 0, c[2] = ZFLOOR;
-  int t = 0;
-  for (int k = 0; k < nz; k++)
-    for (int j = 0; j < NTH; j++) {
-      int a = k * NTH + j, b = k * NTH + (j + 1) % NTH, a1 = a + NTH, b1 = b + NTH;
-      int *q = *tri + 3 * t;
-      q[0] = a, q[1] = b, q[2] = b1, q[3] = a, q[4] = b1, q[5] = a1;
-      t += 2;
-    }
   for (int j = 0; j < NTH; j++) {
-    int *q = *tri + 3 * t++;
+    int *q = *tri + 3 * nt++;
     q[0] = (j + 1) % NTH, q[1] = j, q[2] = *nv - 1;
   }
   return nt;
