@@ -47,6 +47,21 @@ static double composite_volume(const double *X)
   return V;
 }
 
+/* Every one of the 10 nodal masses m [in] positive and their sum the element mass M. */
+static void positive_with_total(const char *what, const double *m, double M) {
+  double tot = 0;
+  for (int a = 0; a < 10; a++) {
+    tot += m[a];
+    if (!(m[a] > 0)) {
+      fprintf(stderr, "%s mass node %d = %g not positive\n", what, a, m[a]);
+      kt_fail++;
+    }
+  }
+  char msg[160];
+  snprintf(msg, sizeof msg, "%s total mass vs rho x enclosed volume", what);
+  kt_close(msg, tot, M, 0, 1e-13);
+}
+
 int main(void)
 {
   const double rho = 1130;
@@ -65,15 +80,7 @@ int main(void)
     kt_random_tet(10, 0.2, 0.06, X);
     V = tet10_volume(X);
     fem_element_lumped_mass(FEM_TET10, X, rho, m);
-    double tot = 0;
-    for (int a = 0; a < 10; a++) {
-      tot += m[a];
-      if (!(m[a] > 0)) {
-        fprintf(stderr, "curved tet10 HRZ mass node %d = %g not positive\n", a, m[a]);
-        kt_fail++;
-      }
-    }
-    kt_close("curved tet10 total mass vs rho x enclosed volume", tot, rho * V, 0, 1e-13);
+    positive_with_total("curved tet10 HRZ", m, rho * V);
     /* composite tet10: sum rho V (enclosed by the flat sub-triangles of its faces); straight:
      * rho V/32 per corner, rho V/8 per mid-node, 3 rho V/16 at mid-nodes 02 and 13 (the
      * octahedron's diagonal, each in 6 of the 8 sub-tets of volume V/8) */
@@ -90,15 +97,7 @@ int main(void)
     kt_random_tet(10, 0.2, 0.06, X);
     V = composite_volume(X);
     fem_element_lumped_mass_mat(FEM_TET10, X, &cm, m);
-    tot = 0;
-    for (int a = 0; a < 10; a++) {
-      tot += m[a];
-      if (!(m[a] > 0)) {
-        fprintf(stderr, "curved composite tet10 mass node %d = %g not positive\n", a, m[a]);
-        kt_fail++;
-      }
-    }
-    kt_close("curved composite tet10 total mass vs rho x enclosed volume", tot, rho * V, 0, 1e-13);
+    positive_with_total("curved composite tet10", m, rho * V);
   }
   if (kt_fail) fprintf(stderr, "%d checks failed\n", kt_fail);
   return kt_fail != 0;
