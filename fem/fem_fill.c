@@ -27,6 +27,11 @@ static const SaParam fill_params[] = {
      "Young's modulus (linear in Hencky strain / Kirchhoff stress)"},
     {"poisson", SA_PARAM_REAL, P(poisson), "-", "0.3", -1, 0.5, SA_MIN_OPEN | SA_MAX_OPEN, NULL,
      "Poisson's ratio"},
+    {"apex_stiffness", SA_PARAM_REAL, P(apex_stiffness), "-", "0", 0, 1, 0, NULL,
+     "tangent at the yield surface's apex (the fill at zero confinement) as this fraction of "
+     "the elastic one, instead of the consistent zero that leaves such a region without "
+     "stiffness in Newton's system; the stress is the apex's either way (0 = consistent; "
+     "docs/mohr_coulomb.md)"},
     {"density", SA_PARAM_REAL, P(density), "kg/m^3", "1550", 0, INFINITY, 0, NULL,
      "bulk density (gravity; the verification scenes are weightless)"},
     {"friction_wall", SA_PARAM_REAL, P(friction_wall), "-", "0.6", 0, 10, 0, NULL,
@@ -56,9 +61,11 @@ int fem_fill_load(const SaCase *c, FemFillParams *p) {
 }
 
 int fem_fill_material(const FemFillParams *p, FemMaterial *mat) {
-  const char *nm[] = {"young", "poisson", "friction_angle", "cohesion", "dilation_angle"};
-  double v[] = {p->young, p->poisson, p->friction_angle, p->cohesion, p->dilation_angle};
-  SA_CHECK(fem_material_from_law("mohr_coulomb", 5, nm, v, p->density, mat));
+  const char *nm[] = {"young",          "poisson",        "friction_angle",
+                      "cohesion",       "dilation_angle", "apex_stiffness"};
+  double v[] = {p->young,    p->poisson,        p->friction_angle,
+                p->cohesion, p->dilation_angle, p->apex_stiffness};
+  SA_CHECK(fem_material_from_law("mohr_coulomb", 6, nm, v, p->density, mat));
   SA_CHECK(fem_material_check(mat));
   return 0;
 }
@@ -120,7 +127,7 @@ int fem_fill_k0_stress(FemSolver *s, int region, const FemFillParams *p, double 
   if (k0 == 0) k0 = fem_fill_k0_jaky(p->friction_angle);
   const double deg = M_PI / 180;
   FemMohrCoulomb mc = {p->young, p->poisson, p->friction_angle * deg, p->cohesion,
-                       p->dilation_angle * deg};
+                       p->dilation_angle * deg, p->apex_stiffness};
   int nset = 0, nh = 0, nq = fem_element_nqp(m->etype);
   double *h = malloc(sizeof(double) * (size_t)nq * FEM_MC_NHIST);
   SA_REQUIRE(h, SA_ERR_MEMORY, "K0 initial stress");

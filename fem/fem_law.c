@@ -5,6 +5,7 @@
  * fem_actuator.c built by hand, so the numbers do not depend on how a material was made. Their
  * FemLaw objects (eval wrappers around fem_material_eval_iso) make them listable and callable
  * like any registered law. */
+#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <string.h>
@@ -49,10 +50,10 @@ static const char *const p_mr[] = {"c10", "c01", "kappa"};
 static const char *const p_ye[] = {"c10", "c20", "c30", "kappa"};
 static const char *const p_st[] = {"e", "nu"};
 static const FemLaw builtin[] = {
-    {"neohooke", 2, p_nh, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_neohooke, NULL, eval_neohooke_mu0, NULL},
-    {"mooney_rivlin", 3, p_mr, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_mooney, NULL, eval_mooney_mu0, NULL},
-    {"yeoh", 4, p_ye, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_yeoh, NULL, eval_yeoh_mu0, NULL},
-    {"stiff_neohooke", 2, p_st, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_stiff, NULL, eval_stiff_mu0, NULL},
+    {"neohooke", 2, p_nh, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_neohooke, NULL, eval_neohooke_mu0, NULL, NULL},
+    {"mooney_rivlin", 3, p_mr, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_mooney, NULL, eval_mooney_mu0, NULL, NULL},
+    {"yeoh", 4, p_ye, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_yeoh, NULL, eval_yeoh_mu0, NULL, NULL},
+    {"stiff_neohooke", 2, p_st, 0, 1, FEM_LAW_ISOCHORIC, NULL, eval_stiff, NULL, eval_stiff_mu0, NULL, NULL},
 };
 #define NBUILTIN ((int)(sizeof builtin / sizeof *builtin))
 
@@ -141,9 +142,12 @@ int fem_material_from_law(const char *name, int nvals, const char *const *names,
     seen[i] = 1;
     par[i] = values[k];
   }
-  for (int i = 0; i < L->nparams; i++)
+  for (int i = 0; i < L->nparams; i++) {
+    if (!seen[i] && L->param_defaults && !isnan(L->param_defaults[i]))
+      par[i] = L->param_defaults[i], seen[i] = 1;
     SA_REQUIRE(seen[i], SA_ERR_INPUT, "law '%s': parameter '%s' missing", name,
                L->param_names[i]);
+  }
   FemMaterial m = {0};
   if (L >= builtin && L < builtin + NBUILTIN) {
     m = builtin_material(name, par);

@@ -54,6 +54,9 @@ typedef struct FemLaw {
    * solver follows it: a model with a region whose law says 0 is factorised by UMFPACK LU
    * without trying CHOLMOD (fem_newton.c). */
   int (*symmetric_par)(const double *par);
+  /* nparams defaults (NULL: every parameter must be given; NAN: this one must): a parameter
+   * left out of a law entry takes its default (Mohr-Coulomb's apex_stiffness, 0) */
+  const double *param_defaults;
 } FemLaw;
 
 /* Register law [borrowed: must outlive every use] under law->name; SA_ERR_INPUT if the name is

@@ -13,7 +13,9 @@
  * multipliers are >= 0 and the returned stresses keep the trial ordering; plane, then the edge
  * the trial points to, then the other edge, then the apex. For psi < phi the apex doubles as a
  * tension cut: trial states that no flow-consistent return reaches go to the apex.
- * Consistent tangent: D - sum_ij D n_i (M^-1)_ij (D a_j)^T, zero at the apex.
+ * Consistent tangent: D - sum_ij D n_i (M^-1)_ij (D a_j)^T, zero at the apex (or, with
+ * apex_stiffness = a > 0, a D there: not consistent, but a point at the apex then keeps some
+ * stiffness, so nodes surrounded by such points are not left floating in Newton's system).
  *
  * Finite strain (section 14): b_e^tr = F C_p^-1 F^T = sum l_a m_a (x) m_a, e_a = ln(l_a)/2, the
  * principal return gives tau_a, tau = sum tau_a m_a (x) m_a, P = tau F^-T, and the new history
@@ -37,7 +39,7 @@
 #include "sa_error.h"
 
 typedef struct {
-  double lam, G, K, sf, cf, sp, c;
+  double lam, G, K, sf, cf, sp, c, apex;
 } McConst;
 
 static void mc_const(const FemMohrCoulomb *p, McConst *m)
@@ -50,6 +52,7 @@ static void mc_const(const FemMohrCoulomb *p, McConst *m)
   m->cf = cos(p->phi);
   m->sp = sin(p->psi);
   m->c = p->c;
+  m->apex = p->apex_stiffness;
 }
 
 int fem_mc_check(const FemMohrCoulomb *p)
@@ -68,6 +71,9 @@ int fem_mc_check(const FemMohrCoulomb *p)
              "mohr_coulomb: c = %g Pa must be > 0 when phi = 0 (no strength at all)", p->c);
   SA_REQUIRE(isfinite(p->psi) && p->psi >= 0 && p->psi <= p->phi, SA_ERR_INPUT,
              "mohr_coulomb: psi = %g rad must be in [0, phi = %g] rad", p->psi, p->phi);
+  SA_REQUIRE(isfinite(p->apex_stiffness) && p->apex_stiffness >= 0 && p->apex_stiffness <= 1,
+             SA_ERR_INPUT, "mohr_coulomb: apex_stiffness = %g must be in [0, 1]",
+             p->apex_stiffness);
   return 0;
 }
 
@@ -181,7 +187,8 @@ static int mc_return_sorted(const McConst *m, const double e[3], double s[3], do
                         e[1], e[2]);
       double pa = m->c * m->cf / m->sf, ea = pa / (3 * m->K);
       for (int i = 0; i < 3; i++) s[i] = pa, r->deps_p[i] = e[i] - ea;
-      if (D) memset(D, 0, 9 * sizeof *D);
+      if (D)
+        for (int i = 0; i < 9; i++) D[i] = m->apex * De[i];
       r->region = FEM_MC_APEX;
     }
   }
@@ -359,8 +366,10 @@ int fem_mc_eval(const FemMohrCoulomb *p, const double F[9], const double *hist_n
       int edge_pair = (r.region == FEM_MC_EDGE_LEFT && lo == 0 && hi == 1) ||
                       (r.region == FEM_MC_EDGE_RIGHT && lo == 1 && hi == 2);
       double q;
-      if (r.region == FEM_MC_APEX || edge_pair)
+      if (edge_pair)
         q = 0;
+      else if (r.region == FEM_MC_APEX)
+        q = m.apex * 2 * m.G; /* the elastic shear modulus' share (apex_stiffness, 0: exact) */
       else if (fabs(gap) <= 1e-12 * escale || gap == 0)
         q = D[3 * a + a] - D[3 * c + a];
       else
@@ -451,13 +460,13 @@ int fem_mc_hist_init_at(const FemMohrCoulomb *p, const double F[9], const double
 static FemMohrCoulomb mc_law_params(const double *par)
 {
   const double d = M_PI / 180;
-  return (FemMohrCoulomb){par[0], par[1], par[2] * d, par[3], par[4] * d};
+  return (FemMohrCoulomb){par[0], par[1], par[2] * d, par[3], par[4] * d, par[5]};
 }
 
 static void mc_law_init(const double *par, double *hist)
 {
   (void)par;
-  fem_mc_hist_init(&(FemMohrCoulomb){1, 0, 0, 1, 0}, NULL, hist); /* stress-free: C_p^-1 = I */
+  fem_mc_hist_init(&(FemMohrCoulomb){1, 0, 0, 1, 0, 0}, NULL, hist); /* stress-free: C_p^-1 = I */
 }
 
 static int mc_law_eval(const double *par, const FemLawCtx *ctx, const double F[9],
@@ -487,6 +496,8 @@ static int mc_law_check(const double *par)
   SA_REQUIRE(isfinite(par[4]) && par[4] >= 0 && par[4] <= par[2], SA_ERR_INPUT,
              "mohr_coulomb: dilation_angle = %g deg must be in [0, friction_angle = %g deg]",
              par[4], par[2]);
+  SA_REQUIRE(isfinite(par[5]) && par[5] >= 0 && par[5] <= 1, SA_ERR_INPUT,
+             "mohr_coulomb: apex_stiffness = %g must be in [0, 1]", par[5]);
   FemMohrCoulomb p = mc_law_params(par);
   return fem_mc_check(&p);
 }
@@ -496,7 +507,8 @@ static int mc_law_symmetric(const double *par) { return par[4] == par[2]; }
 static double mc_law_mu0(const double *par) { return par[0] / (2 * (1 + par[1])); }
 
 static const char *const mc_law_names[] = {"young", "poisson", "friction_angle", "cohesion",
-                                           "dilation_angle"};
-const FemLaw fem_law_mohr_coulomb = {"mohr_coulomb", 5, mc_law_names, FEM_MC_NHIST, 0,
+                                           "dilation_angle", "apex_stiffness"};
+static const double mc_law_defaults[] = {NAN, NAN, NAN, NAN, NAN, 0};
+const FemLaw fem_law_mohr_coulomb = {"mohr_coulomb", 6, mc_law_names, FEM_MC_NHIST, 0,
                                      FEM_LAW_FULL, mc_law_init, mc_law_eval, mc_law_check,
-                                     mc_law_mu0, mc_law_symmetric};
+                                     mc_law_mu0, mc_law_symmetric, mc_law_defaults};

@@ -33,6 +33,11 @@ typedef struct {
   double phi;     /* friction angle [rad], 0 <= phi < pi/2 */
   double c;       /* cohesion [Pa], >= 0 (> 0 when phi = 0) */
   double psi;     /* dilation angle [rad], 0 <= psi <= phi */
+  double apex_stiffness; /* [-] in [0, 1]: tangent at the apex = this times the elastic one
+                            instead of the consistent zero (0, the default of a zero-initialised
+                            struct: consistent). The stress is the apex's either way; a
+                            cohesionless fill at near-zero stress returns there, and a zero
+                            tangent leaves its nodes without stiffness (docs/mohr_coulomb.md) */
 } FemMohrCoulomb;
 
 /* Region of the return mapping. */

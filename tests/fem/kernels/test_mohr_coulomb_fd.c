@@ -13,6 +13,8 @@
  *  - F = I, virgin: A = lambda d_iJ d_kL + G (d_ik d_JL + d_iL d_Jk) (Hooke);
  *  - initialisation hook: K0 and a rotated general state give back tau0 at F = I; an
  *    inadmissible tau0 is SA_ERR_INPUT;
+ *  - apex_stiffness: at the apex the same P and history, and the tangent of the point kept
+ *    elastic with the apex's geometric term at apex_stiffness = 1, linear in between;
  *  - codes: det F <= 0 is SA_ERR_INVERTED, a NaN is SA_ERR_DOMAIN (both recoverable, > 0).
  * Pass -v to print the largest errors (reported in docs/mohr_coulomb.md). */
 #include <stdio.h>
@@ -108,6 +110,57 @@ static double det_voigt(const double h[6])
   return kt_det3(M);
 }
 
+/* apex_stiffness a at an apex state (F, hist; P0, A0, hn0 its results with a = 0): P and the
+ * new history do not depend on a; the tangent is linear in a (A(1/2) = (A(0) + A(1)) / 2); and
+ * A(1) is the tangent of the same point kept elastic (cohesion 1e6 E, A_el) with the geometric
+ * term -P_iL F^-1_Jk of the apex's P instead of the elastic point's:
+ * A(1) = A_el - (P - P_el)_iL F^-1_Jk (the material part is then the elastic one). */
+static double err_apex;
+static void check_apex_stiffness(const char *name, const FemMohrCoulomb *p, const double F[9],
+                                 const double hist[8], const double hn0[8], const double P0[9],
+                                 const double A0[81])
+{
+  char what[200];
+  FemMohrCoulomb p1 = *p, ph = *p, pe = *p;
+  p1.apex_stiffness = 1, ph.apex_stiffness = 0.5, pe.c = 1e6 * p->young;
+  double h1[8], he[8], P1[9], A1[81], Ph[9], Ah[81], Pe[9], Ae[81], Fi[9];
+  if (fem_mc_eval(&p1, F, hist, h1, P1, A1, NULL) || fem_mc_eval(&ph, F, hist, NULL, Ph, Ah, NULL) ||
+      fem_mc_eval(&pe, F, hist, he, Pe, Ae, NULL)) {
+    fprintf(stderr, "%s: eval with apex_stiffness failed: %s\n", name, sa_error_message());
+    sa_error_clear();
+    kt_fail++;
+    return;
+  }
+  if ((int)he[7] != FEM_MC_ELASTIC || (int)h1[7] != FEM_MC_APEX) {
+    fprintf(stderr, "%s: regions %d (cohesion 1e6 E) and %d (apex_stiffness 1)\n", name,
+            (int)he[7], (int)h1[7]);
+    kt_fail++;
+  }
+  for (int r = 0; r < 9; r++) {
+    snprintf(what, sizeof what, "%s: P with apex_stiffness [%d]", name, r);
+    kt_close(what, P1[r], P0[r], 0, 0);
+  }
+  for (int r = 0; r < 8; r++) {
+    snprintf(what, sizeof what, "%s: history with apex_stiffness [%d]", name, r);
+    kt_close(what, h1[r], hn0[r], 0, 0);
+  }
+  inv3(F, Fi);
+  double Amax = kt_maxabs(Ae, 81);
+  for (int i = 0; i < 3; i++)
+    for (int J = 0; J < 3; J++)
+      for (int k = 0; k < 3; k++)
+        for (int L = 0; L < 3; L++) {
+          int ix = 9 * (3 * i + J) + 3 * k + L;
+          double ref = Ae[ix] - (P1[3 * i + L] - Pe[3 * i + L]) * Fi[3 * J + k];
+          snprintf(what, sizeof what, "%s: A(apex_stiffness 1)[%d%d%d%d] = elastic", name, i, J,
+                   k, L);
+          kt_close(what, A1[ix], ref, 1e-10 * Amax, 0);
+          err_apex = fmax(err_apex, fabs(A1[ix] - ref) / Amax);
+          snprintf(what, sizeof what, "%s: A linear in apex_stiffness [%d]", name, ix);
+          kt_close(what, Ah[ix], 0.5 * (A0[ix] + A1[ix]), 1e-12 * Amax, 0);
+        }
+}
+
 static void check_state(const char *name, const FemMohrCoulomb *p, const double sT[3],
                         FemMcRegion region, double dg_sum)
 {
@@ -169,6 +222,7 @@ static void check_state(const char *name, const FemMohrCoulomb *p, const double 
     fprintf(stderr, "%s: non-associated but symmetric tangent (%g)\n", name, asym);
     kt_fail++;
   }
+  if (region == FEM_MC_APEX) check_apex_stiffness(name, p, F, hist, hn, P, A);
   /* plastic volume change */
   if (region == FEM_MC_PLANE || region == FEM_MC_EDGE_LEFT || region == FEM_MC_EDGE_RIGHT) {
     double dv = -0.5 * log(det_voigt(hn) / det_voigt(hist));
@@ -263,11 +317,11 @@ int main(int argc, char **argv)
 {
   int verbose = argc > 1 && !strcmp(argv[1], "-v");
   const double deg = M_PI / 180;
-  FemMohrCoulomb mats[] = {{20e6, 0.3, 30 * deg, 10e3, 30 * deg},
-                           {20e6, 0.3, 30 * deg, 10e3, 10 * deg},
-                           {5e6, 0.2, 35 * deg, 0, 5 * deg},
-                           {5e6, 0.2, 40 * deg, 0, 40 * deg},
-                           {20e6, 0.45, 0, 10e3, 0}};
+  FemMohrCoulomb mats[] = {{20e6, 0.3, 30 * deg, 10e3, 30 * deg, 0},
+                           {20e6, 0.3, 30 * deg, 10e3, 10 * deg, 0},
+                           {5e6, 0.2, 35 * deg, 0, 5 * deg, 0},
+                           {5e6, 0.2, 40 * deg, 0, 40 * deg, 0},
+                           {20e6, 0.45, 0, 10e3, 0, 0}};
   const char *names[] = {"associated", "non-associated", "c = 0 non-associated", "c = 0 associated",
                          "Tresca"};
   for (int i = 0; i < 5; i++) check_material(names[i], &mats[i]);
@@ -336,7 +390,8 @@ int main(int argc, char **argv)
     const char *rn[5] = {"elastic", "plane", "right edge", "left edge", "apex"};
     for (int r = 0; r < 5; r++) printf("%-10s  %3d states  A vs FD %.2e\n", rn[r], ncase[r], err_fd[r]);
     printf("associated major symmetry %.2e, objectivity %.2e, new-history re-evaluation %.2e, "
-           "hist_init %.2e\n", err_sym, err_obj, err_idem, err_init);
+           "hist_init %.2e, apex_stiffness 1 against the elastic tangent %.2e\n", err_sym,
+           err_obj, err_idem, err_init, err_apex);
   }
   if (kt_fail) fprintf(stderr, "%d checks failed\n", kt_fail);
   return kt_fail != 0;

@@ -161,6 +161,20 @@ static void check_case(const char *name, const FemMohrCoulomb *p, const double s
       snprintf(what, sizeof what, "%s: apex tangent", name);
       kt_close(what, kt_maxabs(D, 9), 0, 0, 0);
     }
+    /* apex_stiffness a: the same stress, tangent a (lambda 1 (x) 1 + 2 G I) */
+    FemMohrCoulomb pax = *p;
+    pax.apex_stiffness = 0.25;
+    double sa[3], Da[9];
+    fem_mc_return_principal(&pax, eT, sa, Da, NULL);
+    for (int a = 0; a < 3; a++) {
+      snprintf(what, sizeof what, "%s: apex stress with apex_stiffness", name);
+      kt_close(what, sa[a], s[a], 0, 0);
+      for (int b = 0; b < 3; b++) {
+        snprintf(what, sizeof what, "%s: apex tangent with apex_stiffness [%d][%d]", name, a, b);
+        kt_close(what, Da[3 * a + b], 0.25 * (k.lam + (a == b ? 2 * k.G : 0)),
+                 1e-14 * (k.lam + 2 * k.G), 0);
+      }
+    }
   }
   /* tangent by central differences (piecewise linear: round-off only) */
   double Dmax = 2 * k.G + 3 * k.K, h = 1e-8, fd_err = 0;
@@ -306,13 +320,13 @@ int main(int argc, char **argv)
 {
   verbose = argc > 1 && !strcmp(argv[1], "-v");
   const double deg = M_PI / 180;
-  FemMohrCoulomb assoc = {20e6, 0.3, 30 * deg, 10e3, 30 * deg};
-  FemMohrCoulomb nonassoc = {20e6, 0.3, 30 * deg, 10e3, 10 * deg};
-  FemMohrCoulomb psi0 = {20e6, 0.25, 40 * deg, 1e3, 0};
-  FemMohrCoulomb cohesionless = {5e6, 0.2, 35 * deg, 0, 35 * deg};
-  FemMohrCoulomb cohesionless_na = {5e6, 0.2, 35 * deg, 0, 5 * deg};
-  FemMohrCoulomb tresca = {20e6, 0.45, 0, 10e3, 0};
-  FemMohrCoulomb steep = {20e6, 0.3, 60 * deg, 50e3, 45 * deg};
+  FemMohrCoulomb assoc = {20e6, 0.3, 30 * deg, 10e3, 30 * deg, 0};
+  FemMohrCoulomb nonassoc = {20e6, 0.3, 30 * deg, 10e3, 10 * deg, 0};
+  FemMohrCoulomb psi0 = {20e6, 0.25, 40 * deg, 1e3, 0, 0};
+  FemMohrCoulomb cohesionless = {5e6, 0.2, 35 * deg, 0, 35 * deg, 0};
+  FemMohrCoulomb cohesionless_na = {5e6, 0.2, 35 * deg, 0, 5 * deg, 0};
+  FemMohrCoulomb tresca = {20e6, 0.45, 0, 10e3, 0, 0};
+  FemMohrCoulomb steep = {20e6, 0.3, 60 * deg, 50e3, 45 * deg, 0};
   check_material("associated", &assoc);
   check_material("non-associated", &nonassoc);
   check_material("psi = 0", &psi0);
@@ -333,6 +347,8 @@ int main(int argc, char **argv)
   b = g, b.c = -1, expect_bad("c < 0", b, "c =");
   b = g, b.c = 0, b.phi = b.psi = 0, expect_bad("c = 0 with phi = 0", b, "c =");
   b = g, b.young = NAN, expect_bad("young NaN", b, "young");
+  b = g, b.apex_stiffness = -0.1, expect_bad("apex_stiffness < 0", b, "apex_stiffness");
+  b = g, b.apex_stiffness = 1.5, expect_bad("apex_stiffness > 1", b, "apex_stiffness");
 
   if (verbose) {
     const char *rn[5] = {"elastic", "plane", "right edge", "left edge", "apex"};

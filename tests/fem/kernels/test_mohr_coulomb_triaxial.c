@@ -106,7 +106,8 @@ int main(int argc, char **argv)
     for (int j = 0; j < 3; j++)
       for (int k = 0; k < 3; k++)
         for (int l = 0; l < 3; l++) {
-          FemMohrCoulomb p = {50e6, 0.3, phis[i] * deg, cs[j], phis[i] * deg * (2 - l) / 2};
+          FemMohrCoulomb p = {50e6, 0.3, phis[i] * deg, cs[j], phis[i] * deg * (2 - l) / 2,
+                              0};
           if (phis[i] == 0 && (cs[j] == 0 || l > 0)) continue;
           if (fem_mc_check(&p)) {
             fprintf(stderr, "rejected valid parameters: %s\n", sa_error_message());

@@ -80,7 +80,7 @@ static int nh_check(const double *par) {
 
 static const char *const nh_names[] = {"mu", "lambda", "jmax"};
 static const FemLaw nh_law = {"test_compressible_neohooke", 3, nh_names, 1, 1, FEM_LAW_FULL,
-                              nh_init, nh_eval, nh_check, NULL, NULL};
+                              nh_init, nh_eval, nh_check, NULL, NULL, NULL};
 
 static int cantilever(const FemMesh *m, const FemMaterial *mat, double fz, const double *edata,
                       FemSolver **out) {
