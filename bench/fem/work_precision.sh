@@ -20,5 +20,6 @@ python3 bench/fem/work_precision.py --ref 16.82,36.66,59.32,84.20 \
   "CalculiX C3D10 (locks), same mesh:4/2/2@e=$R/ccx/c3d10_4_2_2.out" \
   "swept grid (mesh kind swept), stop 41:3/2/2/0.125@s=$R/swept_3_2_2_0.125_g2.out" \
   "CalculiX C3D20R, ring-aligned hex (stopped at 109 kPa):h 2 mm@w=$R/ccx/c3d20r_h2.out" \
+  "CalculiX C3D20R h 4 mm, idle (stop 44; stopped at 116 kPa):h 4 mm@w=$R/ccx/c3d20r_h4.out" \
   "AMD Zen, idle (stop 44), Gmsh default and swept grid:Gmsh 4/2/2@s=$R/zen/gmsh_4_2_2.out" \
   "AMD Zen, idle (stop 44), Gmsh default and swept grid:swept 4/2/2/0.5@n=$R/zen/swept_4_2_2_0.5.out"
