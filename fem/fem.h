@@ -207,7 +207,10 @@ void fem_solver_clear_nodal_forces(FemSolver *s);
 /* Time [s] a static solve stands for (e.g. the coupling interval; 0, the default: none). With
  * dt > 0 a successful fem_solver_solve ends with velocities (u - u_start) / dt, u_start the
  * state the solve began from, zero accelerations, and time advanced by dt; with 0 the
- * velocities after a static solve are zero (a state at rest). */
+ * velocities after a static solve are zero (a state at rest). Each static substep of the
+ * solve's load ramp stands for its share of dt (load increment x dt), which the laws see as
+ * their time step (FemLawCtx.dt: a rate-dependent law such as Mohr-Coulomb with a relaxation
+ * time relaxes over it; with 0 they see dt = 0, a rate-independent step). */
 int fem_solver_set_static_interval(FemSolver *s, double dt);
 
 /* Domain hook: called on every Newton trial state x [in] 3 * nnodes; a non-zero return (> 0)

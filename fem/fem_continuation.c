@@ -208,6 +208,7 @@ int fem_cont_ramp(FemSolver *s, int dynamic, double dt_total) {
      * iteration from the converged state is the tangent predictor. */
     StepKind sk = {0};
     if (dynamic) sk = fem_dyn_step_kind(s, dl * dt_total);
+    else sk.law_dt = dl * s->ct.static_dt;
     s->nw.extrapolated = !dynamic && extrapolate(s);
     int iters = 0;
     s->ct.step_count++;

@@ -32,6 +32,12 @@ static const SaParam fill_params[] = {
      "the elastic one, instead of the consistent zero that leaves such a region without "
      "stiffness in Newton's system; the stress is the apex's either way (0 = consistent; "
      "docs/mohr_coulomb.md)"},
+    {"relaxation_time", SA_PARAM_REAL, P(relaxation_time), "s", "0", 0, INFINITY, 0, NULL,
+     "Duvaut-Lions viscoplasticity: the stress above the yield surface relaxes onto it as "
+     "exp(-t / relaxation_time); each step's stress is (inviscid + (tau/dt) trial) / (1 + "
+     "tau/dt), so the tangent keeps a share of the elastic one (a regularisation of the "
+     "perfectly plastic fill; 0 = rate-independent; the actuator scene's time is the piston "
+     "displacement over [mc_bending] piston_speed; docs/mohr_coulomb.md)"},
     {"density", SA_PARAM_REAL, P(density), "kg/m^3", "1550", 0, INFINITY, 0, NULL,
      "bulk density (gravity; the verification scenes are weightless)"},
     {"friction_wall", SA_PARAM_REAL, P(friction_wall), "-", "0.6", 0, 10, 0, NULL,
@@ -62,10 +68,10 @@ int fem_fill_load(const SaCase *c, FemFillParams *p) {
 
 int fem_fill_material(const FemFillParams *p, FemMaterial *mat) {
   const char *nm[] = {"young",          "poisson",        "friction_angle",
-                      "cohesion",       "dilation_angle", "apex_stiffness"};
+                      "cohesion",       "dilation_angle", "apex_stiffness", "relaxation_time"};
   double v[] = {p->young,    p->poisson,        p->friction_angle,
-                p->cohesion, p->dilation_angle, p->apex_stiffness};
-  SA_CHECK(fem_material_from_law("mohr_coulomb", 6, nm, v, p->density, mat));
+                p->cohesion, p->dilation_angle, p->apex_stiffness, p->relaxation_time};
+  SA_CHECK(fem_material_from_law("mohr_coulomb", 7, nm, v, p->density, mat));
   SA_CHECK(fem_material_check(mat));
   return 0;
 }
@@ -127,7 +133,7 @@ int fem_fill_k0_stress(FemSolver *s, int region, const FemFillParams *p, double 
   if (k0 == 0) k0 = fem_fill_k0_jaky(p->friction_angle);
   const double deg = M_PI / 180;
   FemMohrCoulomb mc = {p->young, p->poisson, p->friction_angle * deg, p->cohesion,
-                       p->dilation_angle * deg, p->apex_stiffness};
+                       p->dilation_angle * deg, p->apex_stiffness, 0};
   int nset = 0, nh = 0, nq = fem_element_nqp(m->etype);
   double *h = malloc(sizeof(double) * (size_t)nq * FEM_MC_NHIST);
   SA_REQUIRE(h, SA_ERR_MEMORY, "K0 initial stress");

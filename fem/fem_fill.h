@@ -22,6 +22,7 @@ typedef struct {
   double young;          /* [Pa] */
   double poisson;        /* [-] */
   double apex_stiffness; /* [-] the law's apex tangent (fem_mohr_coulomb.h) */
+  double relaxation_time; /* [s] Duvaut-Lions relaxation time (0: rate-independent) */
   double density;        /* [kg/m^3] */
   double friction_wall;   /* [-] Coulomb coefficient fill - silicone cavity (actuator scene) */
   double friction_piston; /* [-] fill - rigid barrel and piston (actuator scene) */

@@ -74,7 +74,7 @@ typedef struct {
   char tip_surface[SA_STR_MAX], initial_stress[SA_STR_MAX], slave_weights[SA_STR_MAX];
   char fill_element[SA_STR_MAX];
   double fill_h, fill_height, barrel_length, stroke, penalty, penalty_tangent, augment_tol;
-  double k0_ratio;
+  double k0_ratio, piston_speed;
   int n_steps, max_cuts, vtk_every, gravity, smooth_normals, augment;
 } McParams;
 
@@ -91,6 +91,9 @@ static const SaParam mc_params[] = {
      "rigid feed barrel (radius 6 mm) from z = 0 up to this"},
     {"stroke", SA_PARAM_REAL, P(stroke), "m", "0.025", 0, 1, SA_MIN_OPEN, NULL,
      "piston displacement from touching the settled bed"},
+    {"piston_speed", SA_PARAM_REAL, P(piston_speed), "m/s", "0.02", 0, 10, SA_MIN_OPEN, NULL,
+     "piston speed: the stroke's time (a step of length d stands for d / piston_speed), which "
+     "only a rate-dependent fill sees ([fill] relaxation_time > 0)"},
     {"n_steps", SA_PARAM_INT, P(n_steps), "-", "25", 1, 100000, 0, NULL,
      "output steps of the stroke (the solver substeps and cuts inside each)"},
     {"max_cuts", SA_PARAM_INT, P(max_cuts), "-", "4", 0, 30, 0, NULL,
@@ -828,6 +831,8 @@ static int stroke(Mc *o, double *d_reached) {
     if (sa_interrupted()) return SA_ERROR(SA_ERR_INTERRUPTED, "interrupted at %.4g mm", 1e3 * o->d);
     double dt = fmin(dd, P->stroke - o->d);
     SA_CHECK(fem_contact_move_plane(o->c[C_PISTON], (const double[3]){0, 0, o->z_p0 - o->d - dt}));
+    /* the step's time, for a rate-dependent fill ([fill] relaxation_time) */
+    SA_CHECK(fem_solver_set_static_interval(o->s, dt / P->piston_speed));
     SA_CHECK(mark_step(o));
     int rc = fem_solver_solve(o->s);
     FemSolveReport rep;

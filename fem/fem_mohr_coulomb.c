@@ -39,7 +39,7 @@
 #include "sa_error.h"
 
 typedef struct {
-  double lam, G, K, sf, cf, sp, c, apex;
+  double lam, G, K, sf, cf, sp, c, apex, w;
 } McConst;
 
 static void mc_const(const FemMohrCoulomb *p, McConst *m)
@@ -53,6 +53,7 @@ static void mc_const(const FemMohrCoulomb *p, McConst *m)
   m->sp = sin(p->psi);
   m->c = p->c;
   m->apex = p->apex_stiffness;
+  m->w = p->tau_over_dt;
 }
 
 int fem_mc_check(const FemMohrCoulomb *p)
@@ -74,6 +75,8 @@ int fem_mc_check(const FemMohrCoulomb *p)
   SA_REQUIRE(isfinite(p->apex_stiffness) && p->apex_stiffness >= 0 && p->apex_stiffness <= 1,
              SA_ERR_INPUT, "mohr_coulomb: apex_stiffness = %g must be in [0, 1]",
              p->apex_stiffness);
+  SA_REQUIRE(isfinite(p->tau_over_dt) && p->tau_over_dt >= 0, SA_ERR_INPUT,
+             "mohr_coulomb: tau_over_dt = %g must be >= 0", p->tau_over_dt);
   return 0;
 }
 
@@ -88,6 +91,27 @@ static void mc_Dv(const McConst *m, const double v[3], double out[3])
 static double dot3(const double a[3], const double b[3])
 {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Duvaut-Lions viscoplasticity (Simo and Hughes 1998, section 2.7, backward Euler): with
+ * w = tau / dt the stress is (s_inviscid + w s_trial) / (1 + w), the plastic strain increment
+ * deps_p / (1 + w) and the tangent (D_inviscid + w D_e) / (1 + w); w = 0 leaves the inviscid
+ * return as it is. s, deps_p (may be NULL) and D (may be NULL) [in/out], e [in] the trial
+ * elastic strains in the same order. */
+static void mc_viscous(const McConst *m, double w, const double e[3], double s[3],
+                       double deps_p[3], double D[9])
+{
+  if (!(w > 0)) return;
+  double a = 1 / (1 + w), b = w / (1 + w), sT[3];
+  mc_Dv(m, e, sT);
+  for (int i = 0; i < 3; i++) {
+    s[i] = a * s[i] + b * sT[i];
+    if (deps_p) deps_p[i] *= a;
+  }
+  if (D)
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        D[3 * i + j] = a * D[3 * i + j] + b * (m->lam + (i == j ? 2 * m->G : 0));
 }
 
 /* Two-plane (edge) candidate; right = 1: planes 13 and 12, else 13 and 23. Returns 1 when
@@ -224,6 +248,7 @@ int fem_mc_return_principal(const FemMohrCoulomb *p, const double eps_trial[3], 
   double e[3] = {eps_trial[o[0]], eps_trial[o[1]], eps_trial[o[2]]}, s[3], Ds[9];
   FemMcReturn r;
   SA_CHECK(mc_return_sorted(&m, e, s, D ? Ds : NULL, &r));
+  mc_viscous(&m, m.w, e, s, r.deps_p, D ? Ds : NULL);
   for (int a = 0; a < 3; a++) sig[o[a]] = s[a];
   if (D)
     for (int a = 0; a < 3; a++)
@@ -339,13 +364,17 @@ int fem_mc_eval(const FemMohrCoulomb *p, const double F[9], const double *hist_n
   double e[3] = {0.5 * log(lam[0]), 0.5 * log(lam[1]), 0.5 * log(lam[2])}, t[3], D[9];
   FemMcReturn r;
   SA_CHECK(mc_return_sorted(&m, e, t, A ? D : NULL, &r));
+  /* viscous: stress, tangent and the history's increment blended; theta below from the
+   * inviscid return, blended the same way */
+  double dp[3] = {r.deps_p[0], r.deps_p[1], r.deps_p[2]};
+  mc_viscous(&m, m.w, e, t, dp, A ? D : NULL);
   double tau[9];
   mc_spectral(Q, t, tau);
   mc_mm(tau, 0, Fi, 1, P); /* P = tau F^-T */
   if (tau_out) memcpy(tau_out, tau, sizeof tau);
   if (hist_new) {
     double be[3], Bn[9], T1[9], Cn[9], dp2 = 0;
-    for (int a = 0; a < 3; a++) be[a] = exp(2 * (e[a] - r.deps_p[a])), dp2 += r.deps_p[a] * r.deps_p[a];
+    for (int a = 0; a < 3; a++) be[a] = exp(2 * (e[a] - dp[a])), dp2 += dp[a] * dp[a];
     mc_spectral(Q, be, Bn);
     mc_mm(Fi, 0, Bn, 0, T1);
     mc_mm(T1, 0, Fi, 1, Cn); /* F^-1 b_e F^-T */
@@ -366,14 +395,16 @@ int fem_mc_eval(const FemMohrCoulomb *p, const double F[9], const double *hist_n
       int edge_pair = (r.region == FEM_MC_EDGE_LEFT && lo == 0 && hi == 1) ||
                       (r.region == FEM_MC_EDGE_RIGHT && lo == 1 && hi == 2);
       double q;
+      int from_D = 0; /* D is already the viscous blend */
       if (edge_pair)
         q = 0;
       else if (r.region == FEM_MC_APEX)
         q = m.apex * 2 * m.G; /* the elastic shear modulus' share (apex_stiffness, 0: exact) */
       else if (fabs(gap) <= 1e-12 * escale || gap == 0)
-        q = D[3 * a + a] - D[3 * c + a];
+        q = D[3 * a + a] - D[3 * c + a], from_D = 1;
       else
         q = 2 * m.G * (gap - (r.deps_p[a] - r.deps_p[c])) / gap;
+      if (m.w > 0 && !from_D) q = (q + m.w * 2 * m.G) / (1 + m.w); /* (inviscid + w elastic) / (1 + w) */
       th[a][c] = q * ratio;
     }
   for (int k = 0; k < 3; k++)
@@ -460,21 +491,23 @@ int fem_mc_hist_init_at(const FemMohrCoulomb *p, const double F[9], const double
 static FemMohrCoulomb mc_law_params(const double *par)
 {
   const double d = M_PI / 180;
-  return (FemMohrCoulomb){par[0], par[1], par[2] * d, par[3], par[4] * d, par[5]};
+  return (FemMohrCoulomb){par[0], par[1], par[2] * d, par[3], par[4] * d, par[5], 0};
 }
 
 static void mc_law_init(const double *par, double *hist)
 {
   (void)par;
-  fem_mc_hist_init(&(FemMohrCoulomb){1, 0, 0, 1, 0, 0}, NULL, hist); /* stress-free: C_p^-1 = I */
+  fem_mc_hist_init(&(FemMohrCoulomb){1, 0, 0, 1, 0, 0, 0}, NULL, hist); /* stress-free: C_p^-1 = I */
 }
 
 static int mc_law_eval(const double *par, const FemLawCtx *ctx, const double F[9],
                        const double *hist_old, double *hist_new, double *W, double P[9],
                        double A[81])
 {
-  (void)ctx;
   FemMohrCoulomb p = mc_law_params(par);
+  /* relaxation_time tau > 0: Duvaut-Lions over the evaluation's time step; a state without one
+   * (a static solve that stands for no time) is rate-independent */
+  if (par[6] > 0 && ctx && ctx->dt > 0) p.tau_over_dt = par[6] / ctx->dt;
   *W = 0;
   int rc = fem_mc_eval(&p, F, hist_old, hist_new, P, A, NULL);
   return rc == SA_ERR_NOT_CONVERGED ? SA_ERR_DOMAIN : rc; /* recoverable either way */
@@ -498,6 +531,8 @@ static int mc_law_check(const double *par)
              par[4], par[2]);
   SA_REQUIRE(isfinite(par[5]) && par[5] >= 0 && par[5] <= 1, SA_ERR_INPUT,
              "mohr_coulomb: apex_stiffness = %g must be in [0, 1]", par[5]);
+  SA_REQUIRE(isfinite(par[6]) && par[6] >= 0, SA_ERR_INPUT,
+             "mohr_coulomb: relaxation_time = %g s must be >= 0", par[6]);
   FemMohrCoulomb p = mc_law_params(par);
   return fem_mc_check(&p);
 }
@@ -507,8 +542,9 @@ static int mc_law_symmetric(const double *par) { return par[4] == par[2]; }
 static double mc_law_mu0(const double *par) { return par[0] / (2 * (1 + par[1])); }
 
 static const char *const mc_law_names[] = {"young", "poisson", "friction_angle", "cohesion",
-                                           "dilation_angle", "apex_stiffness"};
-static const double mc_law_defaults[] = {NAN, NAN, NAN, NAN, NAN, 0};
-const FemLaw fem_law_mohr_coulomb = {"mohr_coulomb", 6, mc_law_names, FEM_MC_NHIST, 0,
+                                           "dilation_angle", "apex_stiffness",
+                                           "relaxation_time"};
+static const double mc_law_defaults[] = {NAN, NAN, NAN, NAN, NAN, 0, 0};
+const FemLaw fem_law_mohr_coulomb = {"mohr_coulomb", 7, mc_law_names, FEM_MC_NHIST, 0,
                                      FEM_LAW_FULL, mc_law_init, mc_law_eval, mc_law_check,
                                      mc_law_mu0, mc_law_symmetric, mc_law_defaults};

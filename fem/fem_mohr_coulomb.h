@@ -38,6 +38,12 @@ typedef struct {
                             struct: consistent). The stress is the apex's either way; a
                             cohesionless fill at near-zero stress returns there, and a zero
                             tangent leaves its nodes without stiffness (docs/mohr_coulomb.md) */
+  double tau_over_dt; /* [-] >= 0, Duvaut-Lions viscoplasticity of this evaluation: the
+                         relaxation time over the time step, w = tau / dt. The stress, the
+                         plastic strain increment and the tangent are (inviscid + w elastic
+                         trial) / (1 + w): the overstress relaxes as exp(-t / tau) (Simo and
+                         Hughes, Computational Inelasticity, 1998, section 2.7). 0 (the default
+                         of a zero-initialised struct): rate-independent */
 } FemMohrCoulomb;
 
 /* Region of the return mapping. */

@@ -535,8 +535,8 @@ int fem_newton_substep(FemSolver *s, const StepKind *sk, int step, int *iters) {
              s->as.ncontrib == 0;
   *iters = 0;
   s->nw.reason = FEM_NEWTON_ITERATING;
-  s->as.t_eval = s->time + sk->dt; /* laws see the end of the substep */
-  s->as.dt_eval = sk->dt;
+  s->as.dt_eval = sk->dynamic ? sk->dt : sk->law_dt;
+  s->as.t_eval = s->time + s->as.dt_eval; /* laws see the end of the substep */
   /* Predictor (it 0), FemPredictor: NEW_LOAD (default) factorises the converged state with the
    * new pressure's load stiffness, K(u_n, p_n+1); EQUILIBRIUM uses K(u_n, p_n), the
    * equilibrium path's tangent (on the actuator K(u_n, p_n+1) is indefinite above ~4 kPa of

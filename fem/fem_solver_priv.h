@@ -131,6 +131,8 @@ typedef struct { /* fem_dynamics.c */
 typedef struct {
   int dynamic;
   double dt, beta, gamma, alpha;
+  double law_dt; /* static substep: the time it stands for (its load increment times the solve's
+                    static interval), which rate-dependent laws see as their time step */
 } StepKind;
 
 struct FemSolver {

@@ -113,7 +113,7 @@ static void check_mc_composite(double curve)
   }
   m.tet10_composite = 1;
   FemMohrCoulomb p = {1.0, 0.3, 30 * 3.14159265358979323846 / 180, 1e-3,
-                      10 * 3.14159265358979323846 / 180, 0};
+                      10 * 3.14159265358979323846 / 180, 0, 0};
   double hold[8 * FEM_MC_NHIST], hnew[8 * FEM_MC_NHIST], hs[8 * FEM_MC_NHIST];
   for (int q = 0; q < 8; q++) fem_mc_hist_init(&p, NULL, hold + q * FEM_MC_NHIST);
   char what[200];

@@ -115,7 +115,7 @@ static void patch(const FemMaterial *mat, double curve)
   if (nh) { /* the Mohr-Coulomb law: virgin points */
     const double d = M_PI / 180;
     FemMohrCoulomb p = {mat->par[0], mat->par[1], mat->par[2] * d, mat->par[3], mat->par[4] * d,
-                        mat->par[5]};
+                        mat->par[5], 0};
     for (int q = 0; q < 8; q++) fem_mc_hist_init(&p, NULL, hold + q * nh);
   }
   law_sigma(mat, F, nh ? hold : NULL, sref);

@@ -317,11 +317,11 @@ int main(int argc, char **argv)
 {
   int verbose = argc > 1 && !strcmp(argv[1], "-v");
   const double deg = M_PI / 180;
-  FemMohrCoulomb mats[] = {{20e6, 0.3, 30 * deg, 10e3, 30 * deg, 0},
-                           {20e6, 0.3, 30 * deg, 10e3, 10 * deg, 0},
-                           {5e6, 0.2, 35 * deg, 0, 5 * deg, 0},
-                           {5e6, 0.2, 40 * deg, 0, 40 * deg, 0},
-                           {20e6, 0.45, 0, 10e3, 0, 0}};
+  FemMohrCoulomb mats[] = {{20e6, 0.3, 30 * deg, 10e3, 30 * deg, 0, 0},
+                           {20e6, 0.3, 30 * deg, 10e3, 10 * deg, 0, 0},
+                           {5e6, 0.2, 35 * deg, 0, 5 * deg, 0, 0},
+                           {5e6, 0.2, 40 * deg, 0, 40 * deg, 0, 0},
+                           {20e6, 0.45, 0, 10e3, 0, 0, 0}};
   const char *names[] = {"associated", "non-associated", "c = 0 non-associated", "c = 0 associated",
                          "Tresca"};
   for (int i = 0; i < 5; i++) check_material(names[i], &mats[i]);

@@ -320,13 +320,13 @@ int main(int argc, char **argv)
 {
   verbose = argc > 1 && !strcmp(argv[1], "-v");
   const double deg = M_PI / 180;
-  FemMohrCoulomb assoc = {20e6, 0.3, 30 * deg, 10e3, 30 * deg, 0};
-  FemMohrCoulomb nonassoc = {20e6, 0.3, 30 * deg, 10e3, 10 * deg, 0};
-  FemMohrCoulomb psi0 = {20e6, 0.25, 40 * deg, 1e3, 0, 0};
-  FemMohrCoulomb cohesionless = {5e6, 0.2, 35 * deg, 0, 35 * deg, 0};
-  FemMohrCoulomb cohesionless_na = {5e6, 0.2, 35 * deg, 0, 5 * deg, 0};
-  FemMohrCoulomb tresca = {20e6, 0.45, 0, 10e3, 0, 0};
-  FemMohrCoulomb steep = {20e6, 0.3, 60 * deg, 50e3, 45 * deg, 0};
+  FemMohrCoulomb assoc = {20e6, 0.3, 30 * deg, 10e3, 30 * deg, 0, 0};
+  FemMohrCoulomb nonassoc = {20e6, 0.3, 30 * deg, 10e3, 10 * deg, 0, 0};
+  FemMohrCoulomb psi0 = {20e6, 0.25, 40 * deg, 1e3, 0, 0, 0};
+  FemMohrCoulomb cohesionless = {5e6, 0.2, 35 * deg, 0, 35 * deg, 0, 0};
+  FemMohrCoulomb cohesionless_na = {5e6, 0.2, 35 * deg, 0, 5 * deg, 0, 0};
+  FemMohrCoulomb tresca = {20e6, 0.45, 0, 10e3, 0, 0, 0};
+  FemMohrCoulomb steep = {20e6, 0.3, 60 * deg, 50e3, 45 * deg, 0, 0};
   check_material("associated", &assoc);
   check_material("non-associated", &nonassoc);
   check_material("psi = 0", &psi0);

@@ -107,7 +107,7 @@ int main(int argc, char **argv)
       for (int k = 0; k < 3; k++)
         for (int l = 0; l < 3; l++) {
           FemMohrCoulomb p = {50e6, 0.3, phis[i] * deg, cs[j], phis[i] * deg * (2 - l) / 2,
-                              0};
+                              0, 0};
           if (phis[i] == 0 && (cs[j] == 0 || l > 0)) continue;
           if (fem_mc_check(&p)) {
             fprintf(stderr, "rejected valid parameters: %s\n", sa_error_message());

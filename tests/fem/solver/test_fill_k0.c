@@ -153,7 +153,7 @@ static int column(double k0, double *K, double *sv_err, double *K_cf) {
 static int hist_at_check(void) {
   const FemLaw *law = fem_law_find("mohr_coulomb");
   double par[5] = {E, NU, 28, 100, 3};
-  FemMohrCoulomb mc = {E, NU, 28 * M_PI / 180, 100, 3 * M_PI / 180, 0};
+  FemMohrCoulomb mc = {E, NU, 28 * M_PI / 180, 100, 3 * M_PI / 180, 0, 0};
   /* a general F near the settled fill's (stretch, shear, rotation by 0.3 rad about x) */
   double c = cos(0.3), sn = sin(0.3), U[9] = {1 + 2e-4, 3e-5, -1e-5, 3e-5, 1 - 1e-4, 2e-5, -1e-5, 2e-5, 1 - 3e-4};
   double R[9] = {1, 0, 0, 0, c, -sn, 0, sn, c}, F[9], tau0[6] = {-300, -350, -600, 20, -10, 15};

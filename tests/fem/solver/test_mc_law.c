@@ -124,7 +124,7 @@ static int run(const char *what, const FemMesh *m, double phi, double c, double 
   const char *side[] = {"x0", "x1", "y0", "y1", "z0", "z1"};
   for (int k = 0; k < 6; k++) TU_CHECK(fem_solver_fix_surface(s, side[k], FEM_XYZ));
   TU_CHECK(fem_solver_setup(s));
-  Ref r = {{10e6, 0.3, phi * M_PI / 180, c, psi * M_PI / 180, 0}, {0}, 0, 0, 0, 0, 0, 0, m};
+  Ref r = {{10e6, 0.3, phi * M_PI / 180, c, psi * M_PI / 180, 0, 0}, {0}, 0, 0, 0, 0, 0, 0, m};
   fem_mc_hist_init(&r.p, NULL, r.hist);
   fem_solver_set_monitor(s, monitor, &r);
   fem_solver_set_domain_check(s, hook, &r);
