@@ -19,6 +19,8 @@ augmentation must converge. Penalty alone at alpha = 1 and 0.3 is far apart on t
 import csv, os, subprocess, sys, tempfile
 
 exe, case = sys.argv[1], sys.argv[2]
+# argv[3] "frictionless" or "friction": one pair only (two ctest tests, which run side by side)
+ONLY = {"frictionless": "", "friction": "f"}.get(sys.argv[3]) if len(sys.argv) > 3 else None
 BASE = ["mesh.order=1", "mesh.rings=0", "mesh.h=6e-3", "mc_bending.fill_h=4e-3",
         "mc_bending.stroke=2.5e-5", "mc_bending.n_steps=1", "mc_bending.vtk_every=0",
         "mc_bending.augment=40", "solver.rtol=1e-5", "run.threads=1", "run.plots=0",
@@ -56,6 +58,8 @@ BOUNDS = {"": {"force": 0.05, "dV": 0.05, "dangle": 0.05},
 fails, res = [], {}
 with tempfile.TemporaryDirectory() as tmp:
     for variant, alpha in (("", "1"), ("", "0.3"), ("f", "1"), ("f", "0.3")):
+        if ONLY is not None and variant != ONLY:
+            continue
         out = os.path.join(tmp, variant + "a" + alpha)
         base = FRICTION if variant else BASE
         args = [exe, "run", case, "--out", out, "--quiet",
