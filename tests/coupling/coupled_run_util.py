@@ -19,6 +19,16 @@ def short_run_args(exe, case, out):
             "--set", "coupling.checkpoint_every=6", "--set", "coupling.checkpoint_poured=true"]
 
 
+def fixture_args(argv):
+    """(exe, case, folder of the fixture run) from a test's command line; exits when the fixture
+    test coupled_run_short has not made the run."""
+    import sys
+    exe, case, folder = argv[1], argv[2], argv[3]
+    if not os.path.exists(os.path.join(folder, "checkpoint")):
+        sys.exit(f"no fixture run in {folder} (test coupled_run_short makes it)")
+    return exe, case, folder
+
+
 def bed_weight(summary, d=3e-3, density=2500):
     """The bed's weight [N] from summary.ini's grain count."""
     import math

@@ -15,12 +15,10 @@ fixture `dem_short_run`; its folder is argv[3], read only: every run here works 
    keeping the rows before it."""
 import csv, os, sys, tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from coupled_run_util import (balance_fails, bed_weight, read_summary, resume_differs,
-                              resumed_run, short_run_args)
+from coupled_run_util import (balance_fails, bed_weight, fixture_args, read_summary,
+                              resume_differs, resumed_run, short_run_args)
 
-exe, case, out = sys.argv[1], sys.argv[2], sys.argv[3]
-if not os.path.exists(os.path.join(out, "checkpoint")):
-    sys.exit(f"no fixture run in {out} (test coupled_run_short makes it)")
+exe, case, out = fixture_args(sys.argv)
 args = short_run_args(exe, case, out)
 W = bed_weight(read_summary(out))
 fails = []

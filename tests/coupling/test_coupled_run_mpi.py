@@ -18,12 +18,10 @@ input found after the relaunch exits 1 with its message, leaving nothing; more r
 are refused before mpirun starts."""
 import csv, os, subprocess, sys, tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from coupled_run_util import (balance_fails, bed_weight, read_summary, resume_differs,
-                              resumed_run, short_run_args)
+from coupled_run_util import (balance_fails, bed_weight, fixture_args, read_summary,
+                              resume_differs, resumed_run, short_run_args)
 
-exe, case, fixture = sys.argv[1], sys.argv[2], sys.argv[3]
-if not os.path.exists(os.path.join(fixture, "checkpoint")):
-    sys.exit(f"no fixture run in {fixture} (test coupled_run_short makes it)")
+exe, case, fixture = fixture_args(sys.argv)
 n_fixture = int(read_summary(fixture)["grains"])
 MPI = ["dem.mpi_ranks=2", "coupling.checkpoint_every=7"]
 fails = []
