@@ -107,7 +107,9 @@ int fem_mc_hist_init_at(const FemMohrCoulomb *p, const double F[9], const double
                         double hist[FEM_MC_NHIST]);
 
 /* The kernel as a law object (fem_law.h), found by fem_law_find("mohr_coulomb"): parameters
- * young [Pa], poisson [-], friction_angle [deg], cohesion [Pa], dilation_angle [deg]; kind
+ * young [Pa], poisson [-], friction_angle [deg], cohesion [Pa], dilation_angle [deg] and the
+ * optional apex_stiffness [-] (default 0) and relaxation_time [s] (default 0; > 0: Duvaut-Lions
+ * with tau_over_dt = relaxation_time / FemLawCtx.dt, rate-independent where dt = 0); kind
  * FEM_LAW_FULL; FEM_MC_NHIST history values starting stress-free (C_p^-1 = I); a return that
  * finds no admissible state is SA_ERR_DOMAIN (recoverable); symmetric (symmetric_par) exactly
  * when dilation_angle == friction_angle, else the solver factorises with UMFPACK. */
