@@ -1,6 +1,6 @@
 """Shared by the coupled-run tests: the short run that is their fixture, summary.ini's keys,
 the bed's force balance, and runs resumed from a checkpoint."""
-import os, shutil, subprocess
+import math, os, shutil, subprocess, sys
 
 
 def short_run_args(exe, case, out):
@@ -22,7 +22,6 @@ def short_run_args(exe, case, out):
 def fixture_args(argv):
     """(exe, case, folder of the fixture run) from a test's command line; exits when the fixture
     test coupled_run_short has not made the run."""
-    import sys
     exe, case, folder = argv[1], argv[2], argv[3]
     if not os.path.exists(os.path.join(folder, "checkpoint")):
         sys.exit(f"no fixture run in {folder} (test coupled_run_short makes it)")
@@ -31,7 +30,6 @@ def fixture_args(argv):
 
 def bed_weight(summary, d=3e-3, density=2500):
     """The bed's weight [N] from summary.ini's grain count."""
-    import math
     return int(summary["grains"]) * math.pi * d ** 3 / 6 * density * 9.81
 
 
